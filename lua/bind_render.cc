@@ -1,0 +1,257 @@
+// torte.scene() and its methods, torte.render{...}, torte.filter.* and the image returned by render.
+#include <chrono>
+#include <cstdio>
+
+#include "film/image_io.h"
+#include "progress.h"
+#include "types.h"
+
+namespace torte::lua {
+
+namespace {
+
+int l_scene(lua_State* L) {
+  push_object(L, std::make_shared<SceneBuilder>());
+  return 1;
+}
+
+// scene:add(obj, ...): shapes and lights (several at once, or arrays of them).
+void add_one(lua_State* L, SceneBuilder& scene, int idx) {
+  if (auto shape = to_object<ShapeDesc>(L, idx)) {
+    scene.add_shape(*shape);
+  } else if (auto light = to_object<Light>(L, idx)) {
+    scene.add_light(*light);
+  } else if (lua_istable(L, idx) && !lua_getmetatable(L, idx)) {
+    const lua_Integer n = lua_Integer(lua_rawlen(L, idx));
+    for (lua_Integer i = 1; i <= n; ++i) {
+      lua_rawgeti(L, idx, i);
+      add_one(L, scene, lua_gettop(L));
+      lua_pop(L, 1);
+    }
+  } else {
+    throw Error("scene:add expects shapes and lights, got " + type_name(L, idx));
+  }
+}
+
+int scene_add(lua_State* L) {
+  auto scene = to_object<SceneBuilder>(L, 1);
+  if (!scene) throw Error("scene:add must be called with ':' on a scene");
+  if (lua_gettop(L) < 2) throw Error("scene:add expects at least one shape or light");
+  for (int i = 2; i <= lua_gettop(L); ++i) add_one(L, *scene, i);
+  lua_settop(L, 1);
+  return 1;  // the scene, so calls can chain
+}
+
+Filter make_filter(lua_State* L, const char* fn, FilterKind kind) {
+  if (lua_isnoneornil(L, 1)) {
+    lua_settop(L, 0);
+    lua_newtable(L);
+  }
+  KwArgs kw(L, 1, fn);
+  switch (kind) {
+    case FilterKind::Box: {
+      const float r = float(kw.number("radius", 0.5));
+      kw.finish();
+      return Filter::box(r);
+    }
+    case FilterKind::Triangle: {
+      const float r = float(kw.number("radius", 1));
+      kw.finish();
+      return Filter::triangle(r);
+    }
+    case FilterKind::Gaussian: {
+      const float r = float(kw.number("radius", 1.5)), sigma = float(kw.number("sigma", 0.5));
+      kw.finish();
+      return Filter::gaussian(r, sigma);
+    }
+    case FilterKind::Mitchell: {
+      const float r = float(kw.number("radius", 2)), b = float(kw.number("b", 1.0 / 3)),
+                  c = float(kw.number("c", 1.0 / 3));
+      kw.finish();
+      return Filter::mitchell(r, b, c);
+    }
+  }
+  throw Error("internal: unknown filter");
+}
+
+template <FilterKind K>
+int l_filter(lua_State* L) {
+  static constexpr const char* names[] = {"torte.filter.box", "torte.filter.triangle", "torte.filter.gaussian",
+                                          "torte.filter.mitchell"};
+  push_object(L, std::make_shared<Filter>(make_filter(L, names[int(K)], K)));
+  return 1;
+}
+
+void print_summary(const RenderedImage& img, double build_seconds, const RenderSettings& s) {
+  const RenderStats& st = img.stats;
+  const double mrays = st.render_seconds > 0 ? double(st.rays()) / st.render_seconds * 1e-6 : 0;
+  std::fprintf(stderr,
+               "render %dx%d, %d spp%s: build %s, render %s; %.1f M rays (camera %.1f M, extension %.1f M, shadow "
+               "%.1f M), %.2f Mrays/s; %llu NaN/Inf samples dropped\n",
+               s.width, s.height, s.spp, st.interrupted ? " (INTERRUPTED: partial image)" : "",
+               format_duration(build_seconds).c_str(), format_duration(st.render_seconds).c_str(),
+               double(st.rays()) * 1e-6, double(st.camera_rays) * 1e-6, double(st.extension_rays) * 1e-6,
+               double(st.shadow_rays) * 1e-6, mrays, static_cast<unsigned long long>(st.dropped_samples));
+}
+
+int l_render(lua_State* L) {
+  RunContext& ctx = run_context(L);
+  KwArgs kw(L, 1, "torte.render");
+  auto scene = kw.object<SceneBuilder>("scene");
+  auto camera = kw.object<CameraDesc>("camera");
+  RenderSettings s;
+  s.width = kw.integer("width", 512);
+  s.height = kw.integer("height", 512);
+  s.spp = kw.integer("spp", 16);
+  s.max_depth = kw.integer("max_depth", 64);
+  s.rr_depth = kw.integer("rr_depth", 3);
+  const std::string integrator = kw.string("integrator", "path");
+  if (integrator == "path") {
+    s.integrator = IntegratorKind::Path;
+  } else if (integrator == "direct") {
+    s.integrator = IntegratorKind::Direct;
+  } else {
+    kw.fail("integrator", "must be \"path\" or \"direct\", got \"" + integrator + "\"");
+  }
+  // The seed's direct-lighting renderer samples every light at every hit; path tracing picks one by power.
+  s.sample_all_lights = kw.boolean("sample_all_lights", s.integrator == IntegratorKind::Direct);
+  s.seed = uint64_t(kw.integer("seed", 0));
+  if (auto f = kw.object<Filter>("filter", true)) s.filter = *f;
+  kw.finish();
+  if (s.width <= 0 || s.height <= 0) kw.fail("width", "and 'height' must be positive");
+  if (s.spp <= 0) kw.fail("spp", "must be positive");
+  if (s.max_depth < 0) kw.fail("max_depth", "must be non-negative");
+  if (ctx.spp_override > 0) s.spp = ctx.spp_override;
+  if (ctx.seed_override >= 0) s.seed = uint64_t(ctx.seed_override);
+  if (ctx.interrupted) throw Error("torte.render: not started, the run was interrupted");
+
+  const auto t0 = std::chrono::steady_clock::now();
+  std::shared_ptr<Scene> flat = scene->flatten();
+  flat->camera = *camera;
+  flat->has_camera = true;
+  const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  ConsoleProgress progress("render");
+  auto img = std::make_shared<RenderedImage>();
+  RenderOutput out = render(*flat, s, ctx.quiet ? nullptr : &progress, ctx.cancel);
+  progress.finish();
+  img->image = std::move(out.image);
+  img->stats = out.stats;
+  if (out.stats.interrupted) ctx.interrupted = true;
+  if (!ctx.quiet || out.stats.interrupted) print_summary(*img, build_seconds, s);
+  if (out.stats.dropped_samples > 0 && ctx.quiet)
+    std::fprintf(stderr, "warning: %llu NaN/Inf samples were dropped\n",
+                 static_cast<unsigned long long>(out.stats.dropped_samples));
+  push_object(L, std::move(img));
+  return 1;
+}
+
+std::shared_ptr<RenderedImage> self_image(lua_State* L, const char* method) {
+  auto img = to_object<RenderedImage>(L, 1);
+  if (!img) throw Error(std::string("image:") + method + " must be called with ':' on an image");
+  return img;
+}
+
+// image:write(path [, {exposure = stops}])
+int image_write(lua_State* L) {
+  auto img = self_image(L, "write");
+  if (lua_type(L, 2) != LUA_TSTRING) throw Error("image:write expects a file name");
+  const std::string path = lua_tostring(L, 2);
+  WriteOptions options;
+  if (!lua_isnoneornil(L, 3)) {
+    KwArgs kw(L, 3, "image:write");
+    options.exposure = float(kw.number("exposure", 0));
+    kw.finish();
+  }
+  write_image(img->image, path, options);
+  if (!run_context(L).quiet) std::fprintf(stderr, "wrote %s\n", path.c_str());
+  lua_settop(L, 1);
+  return 1;
+}
+
+// image:pixel(x, y) -> r, g, b (0-based, (0,0) top left)
+int image_pixel(lua_State* L) {
+  auto img = self_image(L, "pixel");
+  const lua_Integer x = luaL_checkinteger(L, 2), y = luaL_checkinteger(L, 3);
+  if (x < 0 || y < 0 || x >= img->image.width || y >= img->image.height)
+    throw Error("image:pixel: (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the image");
+  const Rgb c = img->image.at(int(x), int(y));
+  lua_pushnumber(L, c.r);
+  lua_pushnumber(L, c.g);
+  lua_pushnumber(L, c.b);
+  return 3;
+}
+
+// image:mean() -> r, g, b over all pixels
+int image_mean(lua_State* L) {
+  auto img = self_image(L, "mean");
+  double r = 0, g = 0, b = 0;
+  for (const Rgb& c : img->image.pixels) r += c.r, g += c.g, b += c.b;
+  const double n = double(img->image.pixels.size());
+  lua_pushnumber(L, r / n);
+  lua_pushnumber(L, g / n);
+  lua_pushnumber(L, b / n);
+  return 3;
+}
+
+int image_index(lua_State* L) {
+  auto img = to_object<RenderedImage>(L, 1);
+  const std::string key = luaL_checkstring(L, 2);
+  if (key == "width") {
+    lua_pushinteger(L, img->image.width);
+  } else if (key == "height") {
+    lua_pushinteger(L, img->image.height);
+  } else if (key == "rays") {
+    lua_pushinteger(L, lua_Integer(img->stats.rays()));
+  } else if (key == "dropped_samples") {
+    lua_pushinteger(L, lua_Integer(img->stats.dropped_samples));
+  } else if (key == "render_seconds") {
+    lua_pushnumber(L, img->stats.render_seconds);
+  } else if (key == "interrupted") {
+    lua_pushboolean(L, img->stats.interrupted);
+  } else {
+    static const luaL_Reg methods[] = {{"write", guarded<image_write>}, {"pixel", guarded<image_pixel>},
+                                       {"mean", guarded<image_mean>}, {nullptr, nullptr}};
+    for (const luaL_Reg* m = methods; m->name; ++m)
+      if (key == m->name) {
+        lua_pushcfunction(L, m->func);
+        return 1;
+      }
+    throw Error("image has no field '" + key + "'");
+  }
+  return 1;
+}
+
+}  // namespace
+
+void open_render(lua_State* L, int torte_index) {
+  // Metatables get their methods once; push_object creates them on first use, so make one of each now.
+  push_object(L, std::make_shared<SceneBuilder>());
+  lua_getmetatable(L, -1);
+  lua_newtable(L);
+  lua_pushcfunction(L, guarded<scene_add>);
+  lua_setfield(L, -2, "add");
+  lua_setfield(L, -2, "__index");
+  lua_pop(L, 2);
+
+  push_object(L, std::make_shared<RenderedImage>());
+  lua_getmetatable(L, -1);
+  lua_pushcfunction(L, guarded<image_index>);
+  lua_setfield(L, -2, "__index");
+  lua_pop(L, 2);
+
+  const luaL_Reg fns[] = {{"scene", guarded<l_scene>}, {"render", guarded<l_render>}, {nullptr, nullptr}};
+  lua_pushvalue(L, torte_index);
+  set_functions(L, fns);
+  lua_pop(L, 1);
+  const luaL_Reg filters[] = {{"box", guarded<l_filter<FilterKind::Box>>},
+                              {"triangle", guarded<l_filter<FilterKind::Triangle>>},
+                              {"gaussian", guarded<l_filter<FilterKind::Gaussian>>},
+                              {"mitchell", guarded<l_filter<FilterKind::Mitchell>>},
+                              {nullptr, nullptr}};
+  push_subtable(L, torte_index, "filter");
+  set_functions(L, filters);
+  lua_pop(L, 1);
+}
+
+}  // namespace torte::lua

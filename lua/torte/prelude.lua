@@ -1,0 +1,44 @@
+-- Lua-side part of the torte module, run at start-up before the scene script.
+local torte = require "torte"
+
+local function sorted_keys(t)
+  local keys = {}
+  for k in pairs(t) do keys[#keys + 1] = tostring(k) end
+  table.sort(keys)
+  return keys
+end
+
+-- The script's command-line arguments (key=value) merged over `defaults`. An argument the scene does not
+-- declare, or one of the wrong type, is an error at the caller's line.
+function torte.options(defaults)
+  local out = {}
+  for k, v in pairs(defaults) do out[k] = v end
+  for k, v in pairs(torte.args) do
+    local default = defaults[k]
+    if default == nil then
+      error(("unknown argument '%s' (this scene accepts: %s)"):format(k, table.concat(sorted_keys(defaults), ", ")), 2)
+    end
+    if type(default) == "number" and type(v) ~= "number" then
+      error(("argument '%s' must be a number, got '%s'"):format(k, tostring(v)), 2)
+    elseif type(default) == "boolean" and type(v) ~= "boolean" then
+      error(("argument '%s' must be true or false, got '%s'"):format(k, tostring(v)), 2)
+    elseif type(default) == "string" then
+      v = tostring(v)
+    end
+    out[k] = v
+  end
+  return out
+end
+
+-- Writes the image to `path` (the extension picks the format). High-dynamic-range outputs (.exr, .hdr) get a
+-- PNG preview beside them with the same name.
+function torte.save(image, path, options)
+  image:write(path, options)
+  local stem, ext = path:match("^(.*)%.(%w+)$")
+  if ext and (ext:lower() == "exr" or ext:lower() == "hdr") then
+    image:write(stem .. ".png", options)
+  end
+  return image
+end
+
+return torte

@@ -1,0 +1,41 @@
+// The C++ types that Lua scripts hold as userdata, and their metatable names (also used in error messages).
+#pragma once
+#include "binding.h"
+#include "film/filter.h"
+#include "film/image.h"
+#include "render/render.h"
+#include "scene/builder.h"
+
+namespace torte::lua {
+
+// A rendered image as the script sees it: pixels plus how they were made.
+struct RenderedImage {
+  Image image;
+  RenderStats stats;
+};
+
+template <> struct LuaName<MaterialDesc> { static constexpr const char* value = "torte.material"; };
+template <> struct LuaName<ShapeDesc> { static constexpr const char* value = "torte.shape"; };
+template <> struct LuaName<Light> { static constexpr const char* value = "torte.light"; };
+template <> struct LuaName<CameraDesc> { static constexpr const char* value = "torte.camera"; };
+template <> struct LuaName<SceneBuilder> { static constexpr const char* value = "torte.scene"; };
+template <> struct LuaName<Filter> { static constexpr const char* value = "torte.filter"; };
+template <> struct LuaName<RenderedImage> { static constexpr const char* value = "torte.image"; };
+
+// Settings of the whole run that bindings consult (from the command line).
+struct RunContext {
+  int spp_override = -1;        // --spp
+  int64_t seed_override = -1;   // --seed
+  bool quiet = false;           // --quiet
+  const std::atomic<bool>* cancel = nullptr;  // set by Ctrl-C
+  bool interrupted = false;     // a render was cut short: later renders are refused
+};
+RunContext& run_context(lua_State* L);
+
+void open_geometry(lua_State* L, int torte_index);  // torte.shape.*, transforms
+void open_materials(lua_State* L, int torte_index);  // torte.material.*
+void open_lights(lua_State* L, int torte_index);     // torte.light.*
+void open_cameras(lua_State* L, int torte_index);    // torte.camera.*
+void open_render(lua_State* L, int torte_index);     // torte.scene, torte.render, torte.filter.*, images
+
+}  // namespace torte::lua

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs the Debian packages torte needs, and only those that are missing (idempotent).
+# Usage: scripts/install-deps.sh [--bench]   (--bench adds Embree for bench/embree-compare)
+set -euo pipefail
+packages=(cmake g++ make pkg-config ninja-build libhwy-dev libtbb-dev libopenimageio-dev liblua5.4-dev
+          libbenchmark-dev catch2 zlib1g-dev
+          openimageio-tools)  # OIIO's CMake config checks that /usr/bin/iconvert etc. exist
+if [[ "${1:-}" == "--bench" ]]; then packages+=(libembree-dev); fi
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then missing+=("$p"); fi
+done
+if ((${#missing[@]} == 0)); then exit 0; fi
+echo "install-deps: installing ${missing[*]}" >&2
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get -o DPkg::Lock::Timeout=600 update -qq
+"${sudo_cmd[@]}" apt-get -o DPkg::Lock::Timeout=600 install -y -qq --no-install-recommends "${missing[@]}"

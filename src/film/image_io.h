@@ -1,0 +1,24 @@
+// Image files through OpenImageIO. Kept in its own library (torte_io): linking OIIO costs ~0.4 s per process
+// start, so only executables that really read or write images link it.
+#pragma once
+#include <string>
+
+#include "film/image.h"
+
+namespace torte {
+
+struct WriteOptions {
+  float exposure = 0;  // stops; applied (x 2^exposure) before encoding display formats (PNG, JPEG, ...)
+};
+
+// The extension picks the format: .exr (32-bit float, linear, no tone mapping), .hdr (RGBE, linear),
+// .png/.jpg/.tif/... (exposure, clamp, sRGB encoding, 8 bits; non-finite pixels black). Creates missing parent
+// directories. Throws torte::Error naming the file on failure.
+void write_image(const Image& image, const std::string& path, const WriteOptions& options = {});
+// Reads any format OIIO knows into linear RGB (sRGB-encoded 8-bit formats are decoded). Throws torte::Error.
+Image read_image(const std::string& path);
+// sRGB transfer function (IEC 61966-2-1) of one linear value clamped to [0,1].
+float linear_to_srgb(float v);
+float srgb_to_linear(float v);
+
+}  // namespace torte

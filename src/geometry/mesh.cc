@@ -1,0 +1,85 @@
+#include "geometry/mesh.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace torte {
+
+void TriangleMesh::validate(const std::string& what) const {
+  const size_t n = x.size();
+  if (y.size() != n || z.size() != n) throw Error(what + ": position arrays differ in length");
+  if (has_normals() && (nx.size() != n || ny.size() != n || nz.size() != n))
+    throw Error(what + ": there must be one normal per vertex");
+  if (has_uvs() && (u.size() != n || v.size() != n)) throw Error(what + ": there must be one uv per vertex");
+  if (indices.size() % 3 != 0) throw Error(what + ": the index count is not a multiple of 3");
+  for (size_t i = 0; i < indices.size(); ++i)
+    if (indices[i] >= n)
+      throw Error(what + ": index " + std::to_string(indices[i]) + " of triangle " + std::to_string(i / 3) +
+                  " is out of range (" + std::to_string(n) + " vertices)");
+  for (size_t i = 0; i < n; ++i)
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(z[i]))
+      throw Error(what + ": vertex " + std::to_string(i) + " has a non-finite position");
+}
+
+void TriangleMesh::transform(const Transform& t) {
+  if (t.is_identity()) return;
+  for (size_t i = 0; i < x.size(); ++i) {
+    const Vec3f p = t.apply_point(position(i));
+    x[i] = p.x; y[i] = p.y; z[i] = p.z;
+  }
+  for (size_t i = 0; i < nx.size(); ++i) {
+    Vec3f n = t.apply_normal(normal(i));
+    const float len = length(n);
+    if (len > 0) n = n / len;
+    nx[i] = n.x; ny[i] = n.y; nz[i] = n.z;
+  }
+  // A mirroring transform reverses the winding; swap two indices so cross(e1, e2) still points outward.
+  if (t.determinant3() < 0)
+    for (size_t i = 0; i + 2 < indices.size(); i += 3) std::swap(indices[i + 1], indices[i + 2]);
+}
+
+Bounds3f TriangleMesh::triangle_bounds(size_t tri) const {
+  Bounds3f b;
+  for (int k = 0; k < 3; ++k) b.extend(position(indices[3 * tri + k]));
+  return b;
+}
+
+float TriangleMesh::triangle_area(size_t tri) const {
+  const Vec3f p0 = position(indices[3 * tri]), p1 = position(indices[3 * tri + 1]),
+              p2 = position(indices[3 * tri + 2]);
+  return 0.5f * length(cross(p1 - p0, p2 - p0));
+}
+
+TriangleMesh make_cube() {
+  TriangleMesh m;
+  // Each face: an axis, a side, and two tangent axes ordered so (t1 x t2) points outward.
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = -1; side <= 1; side += 2) {
+      const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+      const uint32_t base = uint32_t(m.vertex_count());
+      const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+      for (const auto& c : corners) {
+        Vec3f p;
+        p[axis] = float(side);
+        p[a1] = c[0];
+        p[a2] = c[1] * float(side);  // flipping the second tangent on the negative side keeps faces outward
+        m.add_vertex(p);
+        m.u.push_back(0.5f * (c[0] + 1));
+        m.v.push_back(0.5f * (c[1] + 1));
+      }
+      m.add_triangle(base, base + 1, base + 2);
+      m.add_triangle(base, base + 2, base + 3);
+    }
+  return m;
+}
+
+TriangleMesh make_polygon(const std::vector<Vec3f>& vertices) {
+  if (vertices.size() < 3) throw Error("a polygon needs at least 3 vertices");
+  TriangleMesh m;
+  for (const Vec3f& p : vertices) m.add_vertex(p);
+  for (uint32_t i = 1; i + 1 < vertices.size(); ++i) m.add_triangle(0, i, i + 1);
+  return m;
+}
+
+}  // namespace torte

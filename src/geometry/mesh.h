@@ -1,0 +1,44 @@
+// Triangle mesh in structure-of-arrays form: positions, optional vertex normals and uvs, index triples.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/bounds.h"
+#include "core/transform.h"
+#include "core/vec.h"
+
+namespace torte {
+
+struct TriangleMesh {
+  std::vector<float> x, y, z;     // positions
+  std::vector<float> nx, ny, nz;  // vertex normals, empty when the mesh has none
+  std::vector<float> u, v;        // texture coordinates, empty when the mesh has none
+  std::vector<uint32_t> indices;  // three per triangle, counter-clockwise seen from the front face
+
+  size_t vertex_count() const { return x.size(); }
+  size_t triangle_count() const { return indices.size() / 3; }
+  bool has_normals() const { return !nx.empty(); }
+  bool has_uvs() const { return !u.empty(); }
+  Vec3f position(uint32_t i) const { return {x[i], y[i], z[i]}; }
+  Vec3f normal(uint32_t i) const { return {nx[i], ny[i], nz[i]}; }
+  void add_vertex(Vec3f p) { x.push_back(p.x); y.push_back(p.y); z.push_back(p.z); }
+  void add_triangle(uint32_t a, uint32_t b, uint32_t c) { indices.insert(indices.end(), {a, b, c}); }
+
+  // Throws torte::Error (prefixed by `what`) for mismatched array sizes, out-of-range indices or non-finite
+  // positions.
+  void validate(const std::string& what) const;
+  // Maps positions and normals to world space in place (normals renormalized; handedness flips keep the
+  // winding-defined front face, so the geometric normal stays outward).
+  void transform(const Transform& t);
+  Bounds3f triangle_bounds(size_t tri) const;
+  float triangle_area(size_t tri) const;
+};
+
+// Unit cube [-1,1]^3 as 12 outward-facing triangles with per-face uvs.
+TriangleMesh make_cube();
+// A planar polygon (convex or simple, given in order) triangulated as a fan from its first vertex. Throws
+// torte::Error for fewer than 3 vertices.
+TriangleMesh make_polygon(const std::vector<Vec3f>& vertices);
+
+}  // namespace torte

@@ -1,0 +1,59 @@
+// The render driver: progressive passes over image tiles (TBB), each tile traced as wavefronts of paths.
+// Every pixel belongs to exactly one tile and each camera sample only contributes to its own pixel (filter
+// importance sampling), so tiles never share film memory and the image is bitwise identical for any thread
+// count or schedule.
+#pragma once
+#include <atomic>
+#include <cstdint>
+
+#include "film/filter.h"
+#include "film/image.h"
+#include "scene/scene.h"
+
+namespace torte {
+
+enum class IntegratorKind : uint8_t {
+  Path,    // path tracing: next-event estimation + BSDF sampling with MIS, Russian roulette
+  Direct,  // direct lighting only (MIS between light and BSDF sampling); equals Path at max_depth 1
+};
+
+struct RenderSettings {
+  int width = 512, height = 512;
+  int spp = 16;
+  // Largest number of scattering events on a path: 0 shows emitters only, 1 direct light, ...
+  int max_depth = 64;
+  IntegratorKind integrator = IntegratorKind::Path;
+  uint64_t seed = 0;
+  Filter filter = Filter::box();
+  int rr_depth = 3;                // Russian roulette from this many scattering events on
+  bool sample_all_lights = false;  // one shadow ray per light at every vertex instead of one light by power
+  int tile_size = 16;
+};
+
+struct RenderStats {
+  uint64_t camera_rays = 0, extension_rays = 0, shadow_rays = 0;
+  uint64_t dropped_samples = 0;  // NaN or infinite radiance, never added to the film
+  uint64_t samples_done = 0;     // camera samples that reached the film (or were dropped)
+  double render_seconds = 0;
+  bool interrupted = false;
+  uint64_t rays() const { return camera_rays + extension_rays + shadow_rays; }
+};
+
+// Receives progress from worker threads; implementations must be thread-safe and cheap.
+class ProgressSink {
+ public:
+  virtual ~ProgressSink() = default;
+  virtual void update(uint64_t samples_done, uint64_t samples_total, uint64_t rays, double elapsed_seconds) = 0;
+};
+
+struct RenderOutput {
+  Image image;
+  RenderStats stats;
+};
+
+// Renders the scene's camera view. `cancel` (may be null) stops the render between tiles; the image then holds
+// the samples done so far. Throws torte::Error for invalid settings or a scene without a camera.
+RenderOutput render(const Scene& scene, const RenderSettings& settings, ProgressSink* progress = nullptr,
+                    const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace torte

@@ -1,0 +1,152 @@
+#include "render/wavefront.h"
+
+#include <cmath>
+
+#include "render/shade.h"
+
+namespace torte {
+
+void WavefrontRenderer::render(const std::vector<SampleRequest>& requests, std::vector<PixelSum>& film,
+                               RenderStats& stats) {
+  // `direct` is the same pipeline stopped after one scattering event (specular chains come with specular
+  // materials); only its light-sampling strategy differs, chosen in the settings.
+  max_depth_ = settings_.integrator == IntegratorKind::Direct ? std::min(settings_.max_depth, 1) : settings_.max_depth;
+  generate_camera_rays(requests);
+  stats.camera_rays += requests.size();
+  while (!active_.empty()) {
+    trace(stats);
+    add_emission_and_queue(stats);
+    shade();
+    trace_shadows(stats);
+    compact();
+  }
+  for (size_t i = 0; i < paths_.size(); ++i) {
+    const Rgb& L = paths_.radiance[i];
+    ++stats.samples_done;
+    if (!L.is_finite()) {
+      ++stats.dropped_samples;
+      continue;
+    }
+    PixelSum& px = film[paths_.pixel[i]];
+    px.weighted += L * paths_.filter_weight[i];
+    px.weight += paths_.filter_weight[i];
+  }
+}
+
+void WavefrontRenderer::generate_camera_rays(const std::vector<SampleRequest>& requests) {
+  const size_t n = requests.size();
+  paths_.resize(n);
+  active_.resize(n);
+  const uint32_t width = uint32_t(settings_.width);
+  for (size_t i = 0; i < n; ++i) {
+    const SampleRequest& r = requests[i];
+    const Filter::Sample fs = settings_.filter.sample(sampler_.get_2d(r.pixel, r.sample, kDimFilter));
+    const Vec2f raster(float(r.pixel % width) + 0.5f + fs.offset.x, float(r.pixel / width) + 0.5f + fs.offset.y);
+    const Ray ray = camera_.generate_ray(raster);
+    paths_.pixel[i] = r.pixel;
+    paths_.sample[i] = r.sample;
+    paths_.filter_weight[i] = fs.weight;
+    paths_.origin[i] = ray.o;
+    paths_.dir[i] = ray.d;
+    paths_.beta[i] = Rgb(1);
+    paths_.radiance[i] = Rgb(0);
+    paths_.bsdf_pdf[i] = 0;
+    paths_.depth[i] = 0;
+    active_[i] = uint32_t(i);
+  }
+}
+
+void WavefrontRenderer::trace(RenderStats& stats) {
+  for (const uint32_t i : active_) {
+    Ray ray{paths_.origin[i], paths_.dir[i], kInfinity};
+    Hit hit;
+    scene_.intersect(ray, &hit);
+    paths_.hit[i] = hit;
+  }
+  // Camera rays were counted when generated; everything traced after the first segment is an extension ray.
+  if (!active_.empty() && paths_.depth[active_[0]] > 0) stats.extension_rays += active_.size();
+}
+
+void WavefrontRenderer::add_emission_and_queue(RenderStats&) {
+  const Scene& scene = scene_;
+  const bool all_lights = settings_.sample_all_lights;
+  // MIS weight of emission found by BSDF sampling against the light-sampling strategy that could have found it.
+  auto emission_weight = [&](uint32_t i, int light_index, float light_pdf) {
+    if (paths_.depth[i] == 0) return 1.0f;  // seen directly by the camera: no light sampling competes
+    const float pmf = all_lights ? 1.0f : scene.light_selection.pmf(light_index);
+    return power_heuristic(1, paths_.bsdf_pdf[i], 1, pmf * light_pdf);
+  };
+
+  uint32_t counts[kMaterialTypeCount] = {};
+  size_t kept = 0;
+  for (const uint32_t i : active_) {
+    const Hit& hit = paths_.hit[i];
+    const Vec3f d = paths_.dir[i];
+    if (hit.prim == kNoHit) {
+      for (size_t l = 0; l < scene.lights.size(); ++l) {
+        const Light& light = scene.lights[l];
+        if (light.kind != LightKind::Infinite) continue;
+        const float w = emission_weight(i, int(l), light_pdf(scene, light, paths_.origin[i], d, nullptr, kInfinity));
+        paths_.radiance[i] += paths_.beta[i] * light.radiance * w;
+      }
+      paths_.depth[i] = kPathEnded;
+      continue;
+    }
+    const Ray ray{paths_.origin[i], d, hit.t};
+    const SurfaceHit s = scene.surface(ray, hit);
+    const SceneObject& object = scene.objects[s.object];
+    if (object.area_light >= 0) {
+      const Light& light = scene.lights[size_t(object.area_light)];
+      const Rgb le = area_emission(light, s, d);
+      if (!le.is_black()) {
+        const float w = emission_weight(i, object.area_light, light_pdf(scene, light, paths_.origin[i], d, &s, hit.t));
+        paths_.radiance[i] += paths_.beta[i] * le * w;
+      }
+    }
+    if (paths_.depth[i] >= max_depth_) {
+      paths_.depth[i] = kPathEnded;
+      continue;
+    }
+    paths_.surface[i] = s;
+    ++counts[int(object.material.type)];
+    active_[kept++] = i;
+  }
+  active_.resize(kept);
+
+  // Counting sort of the surviving hits by material type: one contiguous queue per type.
+  queue_begin_[0] = 0;
+  for (int t = 0; t < kMaterialTypeCount; ++t) queue_begin_[t + 1] = queue_begin_[t] + counts[t];
+  uint32_t cursor[kMaterialTypeCount];
+  for (int t = 0; t < kMaterialTypeCount; ++t) cursor[t] = queue_begin_[t];
+  material_queue_.resize(kept);
+  for (const uint32_t i : active_)
+    material_queue_[cursor[int(scene.objects[paths_.surface[i].object].material.type)]++] = i;
+}
+
+void WavefrontRenderer::shade() {
+  shadows_.clear();
+  const ShadeContext ctx{scene_, settings_, sampler_, paths_, shadows_};
+  auto queue = [&](MaterialType t) {
+    return std::span<const uint32_t>(material_queue_.data() + queue_begin_[int(t)],
+                                     queue_begin_[int(t) + 1] - queue_begin_[int(t)]);
+  };
+  shade_queue<MaterialType::Lambert>(ctx, queue(MaterialType::Lambert));
+  static_assert(kMaterialTypeCount == 1, "add the new material type's kernel call here");
+}
+
+void WavefrontRenderer::trace_shadows(RenderStats& stats) {
+  for (size_t k = 0; k < shadows_.size(); ++k) {
+    const Ray ray{shadows_.origin[k], shadows_.dir[k], shadows_.t_max[k]};
+    if (!scene_.occluded(ray)) paths_.radiance[shadows_.path[k]] += shadows_.contribution[k];
+  }
+  stats.shadow_rays += shadows_.size();
+}
+
+void WavefrontRenderer::compact() {
+  size_t kept = 0;
+  for (const uint32_t i : active_)
+    if (paths_.depth[i] != kPathEnded) active_[kept++] = i;
+  active_.resize(kept);
+}
+
+}  // namespace torte

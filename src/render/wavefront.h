@@ -1,0 +1,52 @@
+// Renders a batch of camera samples as wavefronts: trace all rays, add emission, counting-sort the hits by
+// material type, run one shading kernel per type, trace the shadow rays, repeat with the surviving paths.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "camera/camera.h"
+#include "core/sampler.h"
+#include "render/path_state.h"
+#include "render/render.h"
+
+namespace torte {
+
+struct SampleRequest {
+  uint32_t pixel;   // linear index
+  uint32_t sample;  // index within the pixel
+};
+
+// Accumulated film values of one pixel: sum of weight * L and sum of weights.
+struct PixelSum {
+  Rgb weighted;
+  float weight = 0;
+};
+
+class WavefrontRenderer {
+ public:
+  WavefrontRenderer(const Scene& scene, const Camera& camera, const RenderSettings& settings, const Sampler& sampler)
+      : scene_(scene), camera_(camera), settings_(settings), sampler_(sampler) {}
+  // Renders the requested samples and adds them to film (indexed by pixel). Counts rays and dropped samples.
+  void render(const std::vector<SampleRequest>& requests, std::vector<PixelSum>& film, RenderStats& stats);
+
+ private:
+  void generate_camera_rays(const std::vector<SampleRequest>& requests);
+  void trace(RenderStats& stats);
+  void add_emission_and_queue(RenderStats& stats);
+  void shade();
+  void trace_shadows(RenderStats& stats);
+  void compact();
+
+  const Scene& scene_;
+  const Camera& camera_;
+  const RenderSettings& settings_;
+  const Sampler& sampler_;
+  int max_depth_ = 0;
+  PathState paths_;
+  ShadowQueue shadows_;
+  std::vector<uint32_t> active_;                   // paths still going
+  std::vector<uint32_t> material_queue_;           // active hits sorted by material type
+  uint32_t queue_begin_[kMaterialTypeCount + 1] = {};
+};
+
+}  // namespace torte
