@@ -1,0 +1,89 @@
+// Padded Owen-scrambled Sobol sampler after Burley 2020, "Practical Hash-based Owen Scrambling" (JCGT 9(4)),
+// and pbrt-v4's PaddedSobolSampler. Only the first two Sobol dimensions are used: together they form a
+// (0,2)-sequence, so every aligned block of 2^m consecutive indices is a (0,m,2)-net (one point in each
+// elementary interval of area 2^-m). Higher dimensions are "padded" by giving every dimension pair its own
+// random index shuffle and its own scrambles instead of using higher Sobol dimensions, whose 2D projections
+// are far less well distributed.
+#include "core/sampler.h"
+
+#include <algorithm>
+
+#include "core/rng.h"
+
+namespace torte {
+
+namespace {
+
+uint32_t reverse_bits(uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+// Laine & Karras 2011 hash with Burley's constants. Addition, and xor with a multiple by an even constant, only
+// carry information from low bits to high bits, so output bit i depends on input bits 0..i only. Applied to
+// bit-reversed values that becomes "each digit is flipped depending on the more significant digits only",
+// which is exactly Owen's nested uniform scrambling.
+uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+
+// Maps a 32-bit fixed-point value in [0, 2^32) to a float in [0, 1). The conversion rounds to nearest, so the
+// largest values would round up to 1; clamp to the largest float below 1.
+float to_unit_float(uint32_t x) { return std::min(float(x) * 0x1p-32f, 0x1.fffffep-1f); }
+
+// The three 32-bit seeds one (pixel, dimension) pair needs: one for the index shuffle, one per coordinate.
+struct Seeds {
+  uint32_t shuffle, a, b;
+};
+
+Seeds derive_seeds(uint64_t seed, uint32_t pixel, uint32_t dimension) {
+  // Hash the pixel/dimension key first, then combine with the seed and hash again, so that nearby keys and
+  // nearby seeds both give unrelated scrambles.
+  const uint64_t key = (uint64_t(pixel) << 32) | dimension;
+  const uint64_t h = mix_bits(mix_bits(key) ^ mix_bits(seed + 0x9e3779b97f4a7c15ULL));
+  const uint64_t h2 = mix_bits(h ^ 0xd1b54a32d192ed03ULL);
+  return {uint32_t(h), uint32_t(h >> 32), uint32_t(h2)};
+}
+
+}  // namespace
+
+uint32_t sobol_dim0(uint32_t index) { return reverse_bits(index); }
+
+uint32_t sobol_dim1(uint32_t index) {
+  // Generator matrix of Sobol's second dimension (the upper-triangular Pascal matrix mod 2), one direction
+  // number per index bit: v_0 = 1/2, v_k = v_{k-1} xor (v_{k-1} >> 1).
+  uint32_t result = 0;
+  for (uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1)
+    if (index & 1) result ^= v;
+  return result;
+}
+
+uint32_t owen_scramble(uint32_t v, uint32_t seed) {
+  return reverse_bits(laine_karras_permutation(reverse_bits(v), seed));
+}
+
+Vec2f Sampler::get_2d(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const {
+  const Seeds s = derive_seeds(seed_, pixel, dimension);
+  // Owen-scrambling the index permutes it within every aligned power-of-two block (index bit k is flipped
+  // depending only on the bits above it), so the first 2^m shuffled indices are still one aligned block of the
+  // (0,2)-sequence and stay a (0,m,2)-net, while different dimension pairs visit their points in unrelated orders.
+  const uint32_t index = owen_scramble(sample_index, s.shuffle);
+  return {to_unit_float(owen_scramble(sobol_dim0(index), s.a)),
+          to_unit_float(owen_scramble(sobol_dim1(index), s.b))};
+}
+
+float Sampler::get_1d(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const {
+  const Seeds s = derive_seeds(seed_, pixel, dimension);
+  const uint32_t index = owen_scramble(sample_index, s.shuffle);
+  return to_unit_float(owen_scramble(sobol_dim0(index), s.a));
+}
+
+}  // namespace torte

@@ -1,0 +1,150 @@
+#include "core/sampling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+
+namespace torte {
+
+namespace {
+
+constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;  // largest float below 1
+
+// Direction with the given cos(theta) and azimuth 2 pi u around +z; sin_theta is passed in so callers can compute
+// it without cancellation.
+Vec3f spherical_direction(float sin_theta, float cos_theta, float u) {
+  const float phi = 2 * kPi * u;
+  return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+}
+
+}  // namespace
+
+Vec2f sample_uniform_disk_concentric(Vec2f u) {
+  // Shirley & Chiu 1997: maps concentric squares to concentric circles, so strata of u stay compact on the disk
+  // (better than the polar map for stratified and low-discrepancy samples).
+  const float x = 2 * u.x - 1, y = 2 * u.y - 1;
+  if (x == 0 && y == 0) return {0, 0};
+  float r, theta;
+  if (std::fabs(x) > std::fabs(y)) {
+    r = x;
+    theta = (kPi / 4) * (y / x);
+  } else {
+    r = y;
+    theta = kPi / 2 - (kPi / 4) * (x / y);
+  }
+  return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+Vec3f sample_uniform_sphere(Vec2f u) {
+  const float z = 1 - 2 * u.x;
+  return spherical_direction(std::sqrt(std::max(0.0f, 1 - z * z)), z, u.y);
+}
+
+Vec3f sample_uniform_hemisphere(Vec2f u) {
+  const float z = u.x;
+  return spherical_direction(std::sqrt(std::max(0.0f, 1 - z * z)), z, u.y);
+}
+
+Vec3f sample_cosine_hemisphere(Vec2f u) {
+  // Malley's method: uniform on the disk, projected up to the hemisphere, has density cos(theta)/pi.
+  const Vec2f d = sample_uniform_disk_concentric(u);
+  return {d.x, d.y, std::sqrt(std::max(0.0f, 1 - d.x * d.x - d.y * d.y))};
+}
+
+Vec3f sample_uniform_cone(Vec2f u, float cos_theta_max) {
+  // Work with a = 1 - cos(theta), uniform in [0, 1 - cos_theta_max]: sin^2 = a (2 - a) keeps full precision for the
+  // narrow cones of small, distant lights, where 1 - cos^2 would cancel catastrophically.
+  const float a = u.x * (1 - cos_theta_max);
+  const float cos_theta = 1 - a;
+  return spherical_direction(std::sqrt(std::max(0.0f, a * (2 - a))), cos_theta, u.y);
+}
+
+Vec3f sample_uniform_triangle(Vec2f u) {
+  // Heitz 2019, "A Low-Distortion Map Between Triangle and Square": shrinks the square's lower or upper half
+  // (split along the diagonal) onto the triangle. Unlike the sqrt map it keeps strata compact and needs no sqrt.
+  float b0, b1;
+  if (u.x < u.y) {
+    b0 = u.x / 2;
+    b1 = u.y - b0;
+  } else {
+    b1 = u.y / 2;
+    b0 = u.x - b1;
+  }
+  return {b0, b1, std::max(0.0f, 1 - b0 - b1)};
+}
+
+Distribution1D::Distribution1D(std::span<const float> weights) : func_(weights.begin(), weights.end()) {
+  const size_t n = func_.size();
+  if (n == 0) throw Error("a discrete distribution needs at least one weight");
+  for (size_t i = 0; i < n; ++i)
+    if (!std::isfinite(func_[i]) || func_[i] < 0)
+      throw Error("distribution weight " + std::to_string(i) + " is " + std::to_string(func_[i]) +
+                  "; weights must be finite and non-negative");
+  // Accumulate in double: with many bins (environment maps) a float running sum loses the small ones.
+  std::vector<double> sum(n + 1, 0.0);
+  for (size_t i = 0; i < n; ++i) sum[i + 1] = sum[i] + func_[i];
+  const double total = sum[n];
+  integral_ = float(total / double(n));
+  // Decide "all zero" on the float integral that pmf() and the pdf divide by, so that weights so tiny their
+  // average underflows give a consistent uniform distribution rather than a cdf that disagrees with the pmf.
+  cdf_.resize(n + 1);
+  for (size_t i = 0; i <= n; ++i)
+    cdf_[i] = integral_ > 0 ? float(sum[i] / total) : float(double(i) / double(n));
+  // Exact endpoints, so u in [0, 1) always falls inside the table.
+  cdf_[0] = 0;
+  cdf_[n] = 1;
+}
+
+float Distribution1D::pmf(int i) const {
+  if (i < 0 || size_t(i) >= func_.size()) return 0;
+  const float n = float(func_.size());
+  return integral_ > 0 ? func_[size_t(i)] / (integral_ * n) : 1 / n;
+}
+
+int Distribution1D::sample_discrete(float u, float* pmf_out, float* u_remapped) const {
+  const int n = int(func_.size());
+  if (n == 0) {  // default-constructed: nothing to pick (e.g. a scene without lights)
+    if (pmf_out) *pmf_out = 0;
+    if (u_remapped) *u_remapped = 0;
+    return -1;
+  }
+  if (!(u >= 0)) u = 0;  // also maps NaN to 0, so the result below is always a valid bin
+  // The bin is the last i with cdf[i] <= u. Zero-weight bins have cdf[i] == cdf[i+1], so upper_bound skips them.
+  int i = int(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin()) - 1;
+  i = std::clamp(i, 0, n - 1);
+  // Only reachable for u outside [0, 1): step back from trailing empty bins so a zero-probability bin is never
+  // returned.
+  while (i > 0 && cdf_[size_t(i) + 1] == cdf_[size_t(i)]) --i;
+  if (pmf_out) *pmf_out = pmf(i);
+  if (u_remapped) {
+    const float width = cdf_[size_t(i) + 1] - cdf_[size_t(i)];
+    const float r = width > 0 ? (u - cdf_[size_t(i)]) / width : 0;
+    *u_remapped = std::clamp(r, 0.0f, kOneMinusEpsilon);
+  }
+  return i;
+}
+
+float Distribution1D::sample_continuous(float u, float* pdf, int* bin) const {
+  float du;
+  const int i = sample_discrete(u, nullptr, &du);
+  if (i < 0) {
+    if (pdf) *pdf = 0;
+    if (bin) *bin = -1;
+    return 0;
+  }
+  const int n = int(func_.size());
+  const float fn = float(n);
+  float x = std::min((float(i) + du) / fn, kOneMinusEpsilon);
+  // Rounding can put x a hair outside bin i (e.g. exactly on the next bin's left edge); nudge it back so that
+  // int(x * n) == i. Callers that look a density up from x (texels of an environment map) then find the same bin
+  // the pdf refers to, and never a zero-weight neighbour.
+  while (int(x * fn) > i) x = std::nextafter(x, 0.0f);
+  while (int(x * fn) < i) x = std::nextafter(x, 1.0f);
+  if (pdf) *pdf = integral_ > 0 ? func_[size_t(i)] / integral_ : 1;
+  if (bin) *bin = i;
+  return x;
+}
+
+}  // namespace torte
