@@ -1,0 +1,151 @@
+#include "film/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <system_error>
+#include <vector>
+
+#include "core/error.h"
+
+namespace torte {
+
+namespace fs = std::filesystem;
+
+float linear_to_srgb(float v) {
+  if (!(v > 0)) return 0;  // also maps NaN to 0
+  if (v >= 1) return 1;
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
+}
+
+float srgb_to_linear(float v) {
+  if (!(v > 0)) return 0;
+  if (v >= 1) return 1;
+  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+namespace {
+
+[[noreturn]] void write_error(const std::string& path, const std::string& reason) {
+  throw Error("cannot write image '" + path + "': " + reason);
+}
+
+[[noreturn]] void read_error(const std::string& path, const std::string& reason) {
+  throw Error("cannot read image '" + path + "': " + reason);
+}
+
+// OIIO's messages can span lines and end in a newline; keep ours one line.
+std::string one_line(std::string s) {
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+  return s.empty() ? "unknown OpenImageIO error" : s;
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+}  // namespace
+
+void write_image(const Image& image, const std::string& path, const WriteOptions& options) {
+  if (image.width <= 0 || image.height <= 0 || image.pixels.size() != size_t(image.width) * size_t(image.height))
+    write_error(path, "the image is empty or its pixel count does not match " + std::to_string(image.width) + "x" +
+                          std::to_string(image.height));
+  const std::string ext = lower_extension(path);
+  if (ext.empty()) write_error(path, "no file extension to choose the format from");
+  // Ask OIIO for a writer before touching the file system, so an unknown extension creates no directories.
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) write_error(path, one_line(OIIO::geterror()));
+
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty()) {
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+    if (ec) write_error(path, "cannot create directory '" + parent.string() + "': " + ec.message());
+  }
+
+  const int w = image.width, h = image.height;
+  const size_t n = image.pixels.size();
+  const bool linear = ext == ".exr" || ext == ".hdr";
+  std::vector<float> linear_data;
+  std::vector<unsigned char> display_data;
+  OIIO::ImageSpec spec;
+  const void* data = nullptr;
+  OIIO::TypeDesc data_type;
+  if (linear) {
+    spec = OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT);
+    spec.attribute("oiio:ColorSpace", "Linear");
+    if (ext == ".exr") spec.attribute("compression", "zip");
+    linear_data.resize(3 * n);
+    // RGBE has no sign and no NaN/inf: such values would come back as garbage, so they are written as 0 there.
+    // EXR stores every float as it is.
+    const bool rgbe = ext == ".hdr";
+    for (size_t i = 0; i < n; ++i) {
+      const Rgb& p = image.pixels[i];
+      const float c[3] = {p.r, p.g, p.b};
+      for (int k = 0; k < 3; ++k)
+        linear_data[3 * i + k] = rgbe && !(c[k] > 0 && std::isfinite(c[k])) ? 0.0f : c[k];
+    }
+    data = linear_data.data();
+    data_type = OIIO::TypeDesc::FLOAT;
+  } else {
+    // Display formats: exposure, clamp and the sRGB curve are applied here rather than by OIIO's colour
+    // management, so the output does not depend on how OIIO/OpenColorIO were configured.
+    spec = OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    const float scale = std::exp2(options.exposure);
+    display_data.resize(3 * n);
+    for (size_t i = 0; i < n; ++i) {
+      // A pixel with any non-finite channel is a failed estimate; showing it black is the least misleading.
+      const Rgb p = image.pixels[i].is_finite() ? image.pixels[i] * scale : Rgb(0);
+      const float c[3] = {p.r, p.g, p.b};
+      for (int k = 0; k < 3; ++k)
+        display_data[3 * i + k] = static_cast<unsigned char>(std::lround(linear_to_srgb(c[k]) * 255));
+    }
+    data = display_data.data();
+    data_type = OIIO::TypeDesc::UINT8;
+  }
+
+  if (!out->open(path, spec)) write_error(path, one_line(out->geterror()));
+  if (!out->write_image(data_type, data)) {
+    const std::string reason = one_line(out->geterror());
+    out->close();
+    write_error(path, reason);
+  }
+  if (!out->close()) write_error(path, one_line(out->geterror()));
+}
+
+Image read_image(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) read_error(path, fs::exists(path, ec) ? "not a regular file" : "no such file");
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) read_error(path, one_line(OIIO::geterror()));
+  const OIIO::ImageSpec& spec = in->spec();
+  const int w = spec.width, h = spec.height, nc = spec.nchannels;
+  if (w <= 0 || h <= 0 || nc <= 0) read_error(path, "the file holds no pixels");
+  std::vector<float> buf(size_t(w) * size_t(h) * size_t(nc));
+  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, buf.data())) read_error(path, one_line(in->geterror()));
+
+  // 8-bit PNG and JPEG are sRGB whatever they are tagged; other 8-bit files (BMP, TGA, ...) carry no colour
+  // space and are display-referred by convention, as write_image makes them.
+  const std::string format = in->format_name(), space = spec.get_string_attribute("oiio:ColorSpace");
+  const bool srgb = OIIO::Strutil::iequals(space, "sRGB") ||
+                    (spec.format == OIIO::TypeDesc::UINT8 && (space.empty() || format == "png" || format == "jpeg"));
+  const auto decode = [srgb](float v) { return srgb ? srgb_to_linear(v) : v; };
+  // Grey (and grey + alpha) images are replicated to RGB; channels past the third (alpha, ...) are dropped.
+  const int cg = nc >= 3 ? 1 : 0, cb = nc >= 3 ? 2 : 0;
+  Image image(w, h);
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const float* p = &buf[i * nc];
+    image.pixels[i] = Rgb(decode(p[0]), decode(p[cg]), decode(p[cb]));
+  }
+  return image;
+}
+
+}  // namespace torte
