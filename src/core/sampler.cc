@@ -44,16 +44,18 @@ struct Seeds {
   uint32_t shuffle, a, b;
 };
 
-Seeds derive_seeds(uint64_t seed, uint32_t pixel, uint32_t dimension) {
+Seeds derive_seeds(uint64_t seed_hash, uint32_t pixel, uint32_t dimension) {
   // Hash the pixel/dimension key first, then combine with the seed and hash again, so that nearby keys and
   // nearby seeds both give unrelated scrambles.
   const uint64_t key = (uint64_t(pixel) << 32) | dimension;
-  const uint64_t h = mix_bits(mix_bits(key) ^ mix_bits(seed + 0x9e3779b97f4a7c15ULL));
+  const uint64_t h = mix_bits(mix_bits(key) ^ seed_hash);
   const uint64_t h2 = mix_bits(h ^ 0xd1b54a32d192ed03ULL);
   return {uint32_t(h), uint32_t(h >> 32), uint32_t(h2)};
 }
 
 }  // namespace
+
+Sampler::Sampler(uint64_t seed) : seed_(seed), seed_hash_(mix_bits(seed + 0x9e3779b97f4a7c15ULL)) {}
 
 uint32_t sobol_dim0(uint32_t index) { return reverse_bits(index); }
 
@@ -71,19 +73,20 @@ uint32_t owen_scramble(uint32_t v, uint32_t seed) {
 }
 
 Vec2f Sampler::get_2d(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const {
-  const Seeds s = derive_seeds(seed_, pixel, dimension);
+  const Seeds s = derive_seeds(seed_hash_, pixel, dimension);
   // Owen-scrambling the index permutes it within every aligned power-of-two block (index bit k is flipped
   // depending only on the bits above it), so the first 2^m shuffled indices are still one aligned block of the
   // (0,2)-sequence and stay a (0,m,2)-net, while different dimension pairs visit their points in unrelated orders.
   const uint32_t index = owen_scramble(sample_index, s.shuffle);
-  return {to_unit_float(owen_scramble(sobol_dim0(index), s.a)),
+  // owen_scramble(sobol_dim0(i)) = reverse(LK(reverse(reverse(i)))) = reverse(LK(i)): skip two reversals.
+  return {to_unit_float(reverse_bits(laine_karras_permutation(index, s.a))),
           to_unit_float(owen_scramble(sobol_dim1(index), s.b))};
 }
 
 float Sampler::get_1d(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const {
-  const Seeds s = derive_seeds(seed_, pixel, dimension);
+  const Seeds s = derive_seeds(seed_hash_, pixel, dimension);
   const uint32_t index = owen_scramble(sample_index, s.shuffle);
-  return to_unit_float(owen_scramble(sobol_dim0(index), s.a));
+  return to_unit_float(reverse_bits(laine_karras_permutation(index, s.a)));
 }
 
 }  // namespace torte

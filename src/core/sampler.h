@@ -12,7 +12,7 @@ namespace torte {
 
 class Sampler {
  public:
-  explicit Sampler(uint64_t seed = 0) : seed_(seed) {}
+  explicit Sampler(uint64_t seed = 0);
   uint64_t seed() const { return seed_; }
   // dimension counts pairs and singles alike: callers give each use its own dimension number.
   Vec2f get_2d(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const;
@@ -20,6 +20,7 @@ class Sampler {
 
  private:
   uint64_t seed_;
+  uint64_t seed_hash_;  // mix_bits of the seed, computed once: every sample needs it
 };
 
 // Building blocks, exposed for tests.

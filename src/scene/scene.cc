@@ -16,6 +16,13 @@ void Scene::finalize() {
     mesh_first_.push_back(uint32_t(tri_mesh_.size()));
     tri_mesh_.insert(tri_mesh_.end(), meshes[m].triangle_count(), m);
   }
+  // World-space vertices of every triangle in one array: the trace loop reads 36 contiguous bytes per test
+  // instead of chasing mesh -> index -> position (the wide BVH will keep its own SoA leaf copy instead).
+  tri_vertices_.resize(size_t(triangle_count()) * 3);
+  for (uint32_t m = 0; m < meshes.size(); ++m)
+    for (size_t t = 0; t < meshes[m].triangle_count(); ++t)
+      for (int k = 0; k < 3; ++k)
+        tri_vertices_[3 * (mesh_first_[m] + t) + k] = meshes[m].position(meshes[m].indices[3 * t + k]);
   std::vector<Bounds3f> bounds(primitive_count());
   for (uint32_t m = 0; m < meshes.size(); ++m)
     for (size_t t = 0; t < meshes[m].triangle_count(); ++t) bounds[mesh_first_[m] + t] = meshes[m].triangle_bounds(t);
@@ -47,11 +54,10 @@ void Scene::finalize() {
 }
 
 void Scene::triangle_vertices(uint32_t prim, Vec3f* p0, Vec3f* p1, Vec3f* p2) const {
-  const TriangleMesh& mesh = meshes[tri_mesh_[prim]];
-  const uint32_t* idx = &mesh.indices[3 * size_t(prim - mesh_first_[tri_mesh_[prim]])];
-  *p0 = mesh.position(idx[0]);
-  *p1 = mesh.position(idx[1]);
-  *p2 = mesh.position(idx[2]);
+  const Vec3f* v = &tri_vertices_[3 * size_t(prim)];
+  *p0 = v[0];
+  *p1 = v[1];
+  *p2 = v[2];
 }
 
 bool Scene::intersect(Ray& ray, Hit* hit) const {

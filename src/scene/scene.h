@@ -72,6 +72,7 @@ class Scene {
   void triangle_vertices(uint32_t prim, Vec3f* p0, Vec3f* p1, Vec3f* p2) const;
   std::vector<uint32_t> tri_mesh_;   // global triangle -> mesh
   std::vector<uint32_t> mesh_first_;  // mesh -> first global triangle
+  std::vector<Vec3f> tri_vertices_;   // three world-space vertices per global triangle
   Bvh2 bvh_;
   Vec3f center_;
   float radius_ = 0;
