@@ -138,6 +138,11 @@ int l_render(lua_State* L) {
   img->image = std::move(out.image);
   img->stats = out.stats;
   if (out.stats.interrupted) ctx.interrupted = true;
+  ctx.build_seconds += build_seconds;
+  ctx.render_seconds += out.stats.render_seconds;
+  ctx.rays += out.stats.rays();
+  ctx.dropped_samples += out.stats.dropped_samples;
+  ++ctx.renders;
   if (!ctx.quiet || out.stats.interrupted) print_summary(*img, build_seconds, s);
   if (out.stats.dropped_samples > 0 && ctx.quiet)
     std::fprintf(stderr, "warning: %llu NaN/Inf samples were dropped\n",
@@ -163,7 +168,9 @@ int image_write(lua_State* L) {
     options.exposure = float(kw.number("exposure", 0));
     kw.finish();
   }
+  const auto t0 = std::chrono::steady_clock::now();
   write_image(img->image, path, options);
+  run_context(L).write_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!run_context(L).quiet) std::fprintf(stderr, "wrote %s\n", path.c_str());
   lua_settop(L, 1);
   return 1;

@@ -27,9 +27,11 @@ void ConsoleProgress::update(uint64_t done, uint64_t total, uint64_t rays, doubl
   if (!lock.owns_lock()) return;  // another thread is printing: skip, never block a worker
   const double fraction = total ? double(done) / double(total) : 1.0;
   const int percent = int(fraction * 100);
-  // Terminal: redraw at most 10 times a second. Log/pipe: a line every 10 % or every 10 seconds.
+  // Terminal: redraw at most 10 times a second. Log/pipe: a line every 10 % or every 10 seconds, but nothing
+  // for renders that finish within a second (the summary line follows anyway).
   const bool due = tty_ ? elapsed - last_print_ >= 0.1 || done == total
-                        : percent / 10 > last_percent_ / 10 || elapsed - last_print_ >= 10 || done == total;
+                        : elapsed >= 1 && (percent / 10 > last_percent_ / 10 || elapsed - last_print_ >= 10 ||
+                                           done == total);
   if (!due || (done == total && last_percent_ == 100)) return;
   last_print_ = elapsed;
   last_percent_ = percent;

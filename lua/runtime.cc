@@ -1,9 +1,12 @@
 #include "runtime.h"
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
 
+#include "progress.h"
 #include "types.h"
 
 namespace torte {
@@ -105,6 +108,7 @@ int run_script(const RunOptions& options) {
   lua_rawsetp(L, LUA_REGISTRYINDEX, &kContextKey);
 
   int code = kExitOk;
+  const auto start = std::chrono::steady_clock::now();
   lua_pushcfunction(L, message_handler);
   const int handler = lua_gettop(L);
   // Everything, including opening the libraries, runs protected so no Lua error escapes as a crash.
@@ -133,6 +137,19 @@ int run_script(const RunOptions& options) {
   }
   if (ctx.interrupted && code == kExitOk) code = kExitInterrupted;
   lua_close(L);
+  if (!options.quiet && ctx.renders > 0) {
+    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double script = std::max(0.0, total - ctx.build_seconds - ctx.render_seconds - ctx.write_seconds);
+    std::fprintf(stderr,
+                 "torte: %s in %s (scene build %s, render %s, image output %s, script %s); %d render%s, %.1f M rays, "
+                 "%.2f Mrays/s; %llu NaN/Inf samples dropped\n",
+                 code == kExitOk ? "finished" : "stopped", format_duration(total).c_str(),
+                 format_duration(ctx.build_seconds).c_str(), format_duration(ctx.render_seconds).c_str(),
+                 format_duration(ctx.write_seconds).c_str(), format_duration(script).c_str(), ctx.renders,
+                 ctx.renders == 1 ? "" : "s", double(ctx.rays) * 1e-6,
+                 ctx.render_seconds > 0 ? double(ctx.rays) / ctx.render_seconds * 1e-6 : 0.0,
+                 static_cast<unsigned long long>(ctx.dropped_samples));
+  }
   return code;
 }
 

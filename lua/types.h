@@ -29,6 +29,10 @@ struct RunContext {
   bool quiet = false;           // --quiet
   const std::atomic<bool>* cancel = nullptr;  // set by Ctrl-C
   bool interrupted = false;     // a render was cut short: later renders are refused
+  // Totals over the run, for the closing summary.
+  double build_seconds = 0, render_seconds = 0, write_seconds = 0;
+  uint64_t rays = 0, dropped_samples = 0;
+  int renders = 0;
 };
 RunContext& run_context(lua_State* L);
 
