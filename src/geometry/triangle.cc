@@ -1,0 +1,72 @@
+// Watertight ray/triangle intersection after Woop, Benthin & Wald 2013 ("Watertight Ray/Triangle
+// Intersection", JCGT 2(1)). The ray is turned into the +z axis of a sheared frame in which every vertex is
+// transformed on its own; the 2D edge functions of an edge shared by two triangles then see exactly the same
+// vertex coordinates and come out as exact negatives of each other, so a ray through the edge is inside (or on
+// the edge of) at least one of the two.
+
+// The argument above needs each edge function to be evaluated as fl(fl(a*b) - fl(c*d)). A fused multiply-add
+// would round only one product, breaking the antisymmetry between the two triangles of an edge; keep the
+// compiler from contracting (GCC contracts by default in C++ as soon as the target has FMA).
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#elif defined(__GNUC__)
+#pragma GCC optimize("fp-contract=off")
+#endif
+
+#include "geometry/triangle.h"
+
+#include <cmath>
+#include <utility>
+
+namespace torte {
+
+bool intersect_triangle(const Ray& ray, Vec3f p0, Vec3f p1, Vec3f p2, TriangleHit* hit) {
+  // Permute so the dominant direction axis becomes z; swapping x and y for a negative z keeps the winding,
+  // which only matters for the sign of det (both faces count here, so it is cosmetic but cheap).
+  const int kz = max_dimension(abs(ray.d));
+  int kx = kz == 2 ? 0 : kz + 1;
+  int ky = kx == 2 ? 0 : kx + 1;
+  if (ray.d[kz] < 0) std::swap(kx, ky);
+  if (ray.d[kz] == 0) return false;  // zero (or NaN) direction
+
+  const float sx = ray.d[kx] / ray.d[kz];
+  const float sy = ray.d[ky] / ray.d[kz];
+  const float sz = 1.0f / ray.d[kz];
+
+  // Vertices relative to the ray origin, sheared so the ray runs along +z through (0, 0).
+  const Vec3f a = p0 - ray.o, b = p1 - ray.o, c = p2 - ray.o;
+  const float ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
+  const float bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
+  const float cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
+
+  // Edge functions: u for edge p1-p2 (weight of p0), v for p2-p0, w for p0-p1.
+  float u = cx * by - cy * bx;
+  float v = ax * cy - ay * cx;
+  float w = bx * ay - by * ax;
+  // A float 0 may be a rounded non-zero: redo all three in double, where the products of floats are exact and
+  // the one rounding of the difference keeps the sign (and exact zeros stay zero).
+  if (u == 0 || v == 0 || w == 0) {
+    u = float(double(cx) * double(by) - double(cy) * double(bx));
+    v = float(double(ax) * double(cy) - double(ay) * double(cx));
+    w = float(double(bx) * double(ay) - double(by) * double(ax));
+  }
+  // No culling: inside means all three on the same side. A zero edge function counts as inside for both
+  // triangles of an edge, so rays through an edge or a vertex hit at least one triangle (possibly two).
+  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
+  const float det = u + v + w;
+  if (det == 0) return false;  // ray parallel to the triangle's plane, or a degenerate triangle
+
+  const float az = sz * a[kz], bz = sz * b[kz], cz = sz * c[kz];
+  const float t_scaled = u * az + v * bz + w * cz;
+  const float inv_det = 1.0f / det;
+  const float t = t_scaled * inv_det;
+  if (!(t > 0 && t < ray.t_max)) return false;  // also rejects NaN
+  if (hit) {
+    hit->t = t;
+    hit->b1 = v * inv_det;
+    hit->b2 = w * inv_det;
+  }
+  return true;
+}
+
+}  // namespace torte
