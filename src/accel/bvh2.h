@@ -2,6 +2,7 @@
 // traversal that calls back into the caller's primitive test. The SIMD wide BVH replaces it in the hot path
 // later; this one stays as the reference for tests and benchmarks.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -26,6 +27,38 @@ struct Bvh2BuildOptions {
   int max_leaf_size = 4;
   int bins = 16;
   float traversal_cost = 1.0f;  // relative to one primitive test
+};
+
+// A ray prepared for many slab tests: reciprocal direction and, per axis, which box side is entered first.
+struct SlabRay {
+  Vec3f o, inv_d;
+  bool neg[3];
+  explicit SlabRay(const Ray& r) : o(r.o), inv_d(1 / r.d.x, 1 / r.d.y, 1 / r.d.z) {
+    neg[0] = inv_d.x < 0;
+    neg[1] = inv_d.y < 0;
+    neg[2] = inv_d.z < 0;
+  }
+  // Same result as Bounds3f::intersect (including its conservative far-plane rounding), without the loop and
+  // swaps: near and far planes are picked by the direction's sign.
+  bool hits(const Bounds3f& b, float t_max) const {
+    constexpr float kRound = 1 + 2 * 3 * 0x1p-24f;
+    const float tx0 = ((neg[0] ? b.hi.x : b.lo.x) - o.x) * inv_d.x;
+    const float tx1 = ((neg[0] ? b.lo.x : b.hi.x) - o.x) * inv_d.x * kRound;
+    const float ty0 = ((neg[1] ? b.hi.y : b.lo.y) - o.y) * inv_d.y;
+    const float ty1 = ((neg[1] ? b.lo.y : b.hi.y) - o.y) * inv_d.y * kRound;
+    const float tz0 = ((neg[2] ? b.hi.z : b.lo.z) - o.z) * inv_d.z;
+    const float tz1 = ((neg[2] ? b.lo.z : b.hi.z) - o.z) * inv_d.z * kRound;
+    // "x > t ? x : t" keeps t when x is NaN (0 * inf: a ray lying in a slab plane), so such a slab does not
+    // constrain the interval, exactly as in Bounds3f::intersect.
+    float t0 = 0, t1 = t_max;
+    t0 = tx0 > t0 ? tx0 : t0;
+    t0 = ty0 > t0 ? ty0 : t0;
+    t0 = tz0 > t0 ? tz0 : t0;
+    t1 = tx1 < t1 ? tx1 : t1;
+    t1 = ty1 < t1 ? ty1 : t1;
+    t1 = tz1 < t1 ? tz1 : t1;
+    return t0 <= t1;
+  }
 };
 
 class Bvh2 {
@@ -56,15 +89,15 @@ class Bvh2 {
 template <class HitPrim>
 bool Bvh2::intersect(Ray& ray, HitPrim&& hit_prim) const {
   if (nodes_.empty()) return false;
-  const Vec3f inv_d{1 / ray.d.x, 1 / ray.d.y, 1 / ray.d.z};
-  const bool neg[3] = {inv_d.x < 0, inv_d.y < 0, inv_d.z < 0};
+  const SlabRay slab(ray);
+  const bool* neg = slab.neg;
   uint32_t stack[64];
   int sp = 0;
   uint32_t node = 0;
   bool hit = false;
   for (;;) {
     const Bvh2Node& n = nodes_[node];
-    if (n.bounds.intersect(ray.o, inv_d, ray.t_max)) {
+    if (slab.hits(n.bounds, ray.t_max)) {
       if (n.count > 0) {
         for (uint32_t i = 0; i < n.count; ++i) hit |= hit_prim(prims_[n.offset + i], ray);
       } else {
@@ -88,13 +121,13 @@ bool Bvh2::intersect(Ray& ray, HitPrim&& hit_prim) const {
 template <class OccludedPrim>
 bool Bvh2::occluded(const Ray& ray, OccludedPrim&& occluded_prim) const {
   if (nodes_.empty()) return false;
-  const Vec3f inv_d{1 / ray.d.x, 1 / ray.d.y, 1 / ray.d.z};
+  const SlabRay slab(ray);
   uint32_t stack[64];
   int sp = 0;
   uint32_t node = 0;
   for (;;) {
     const Bvh2Node& n = nodes_[node];
-    if (n.bounds.intersect(ray.o, inv_d, ray.t_max)) {
+    if (slab.hits(n.bounds, ray.t_max)) {
       if (n.count > 0) {
         for (uint32_t i = 0; i < n.count; ++i)
           if (occluded_prim(prims_[n.offset + i], ray)) return true;

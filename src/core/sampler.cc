@@ -59,13 +59,35 @@ Sampler::Sampler(uint64_t seed) : seed_(seed), seed_hash_(mix_bits(seed + 0x9e37
 
 uint32_t sobol_dim0(uint32_t index) { return reverse_bits(index); }
 
+namespace {
+
+// Sobol's second dimension is linear over GF(2) in the index bits, so it splits into four byte-wise tables:
+// result = T0[byte 0] ^ T1[byte 1] ^ T2[byte 2] ^ T3[byte 3]. The scrambled indices use all 32 bits, and a
+// bit-by-bit loop there costs 32 unpredictable branches per sample.
+struct SobolDim1Tables {
+  uint32_t t[4][256];
+  SobolDim1Tables() {
+    // Direction numbers: v_0 = 1/2, v_k = v_{k-1} xor (v_{k-1} >> 1) (the upper-triangular Pascal matrix mod 2).
+    uint32_t v[32];
+    v[0] = 1u << 31;
+    for (int k = 1; k < 32; ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1);
+    for (int byte = 0; byte < 4; ++byte)
+      for (uint32_t b = 0; b < 256; ++b) {
+        uint32_t r = 0;
+        for (int bit = 0; bit < 8; ++bit)
+          if (b & (1u << bit)) r ^= v[8 * byte + bit];
+        t[byte][b] = r;
+      }
+  }
+};
+
+const SobolDim1Tables kSobolDim1;
+
+}  // namespace
+
 uint32_t sobol_dim1(uint32_t index) {
-  // Generator matrix of Sobol's second dimension (the upper-triangular Pascal matrix mod 2), one direction
-  // number per index bit: v_0 = 1/2, v_k = v_{k-1} xor (v_{k-1} >> 1).
-  uint32_t result = 0;
-  for (uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1)
-    if (index & 1) result ^= v;
-  return result;
+  const auto& t = kSobolDim1.t;
+  return t[0][index & 0xff] ^ t[1][(index >> 8) & 0xff] ^ t[2][(index >> 16) & 0xff] ^ t[3][index >> 24];
 }
 
 uint32_t owen_scramble(uint32_t v, uint32_t seed) {
