@@ -40,7 +40,7 @@ struct SlabRay {
   }
   // Same result as Bounds3f::intersect (including its conservative far-plane rounding), without the loop and
   // swaps: near and far planes are picked by the direction's sign.
-  bool hits(const Bounds3f& b, float t_max) const {
+  bool hits(const Bounds3f& b, float t_max, float* t_near = nullptr) const {
     constexpr float kRound = 1 + 2 * 3 * 0x1p-24f;
     const float tx0 = ((neg[0] ? b.hi.x : b.lo.x) - o.x) * inv_d.x;
     const float tx1 = ((neg[0] ? b.lo.x : b.hi.x) - o.x) * inv_d.x * kRound;
@@ -57,6 +57,7 @@ struct SlabRay {
     t1 = tx1 < t1 ? tx1 : t1;
     t1 = ty1 < t1 ? ty1 : t1;
     t1 = tz1 < t1 ? tz1 : t1;
+    if (t_near) *t_near = t0;
     return t0 <= t1;
   }
 };
@@ -90,57 +91,85 @@ template <class HitPrim>
 bool Bvh2::intersect(Ray& ray, HitPrim&& hit_prim) const {
   if (nodes_.empty()) return false;
   const SlabRay slab(ray);
-  const bool* neg = slab.neg;
-  uint32_t stack[64];
+  float root_near;
+  if (!slab.hits(nodes_[0].bounds, ray.t_max, &root_near)) return false;
+  // Both children are tested at their parent: the nearer is visited next, the farther is pushed with its entry
+  // distance, and popped entries that now lie beyond the closest hit are skipped.
+  struct Entry {
+    uint32_t node;
+    float t_near;
+  };
+  Entry stack[64];
   int sp = 0;
   uint32_t node = 0;
   bool hit = false;
   for (;;) {
     const Bvh2Node& n = nodes_[node];
-    if (slab.hits(n.bounds, ray.t_max)) {
-      if (n.count > 0) {
-        for (uint32_t i = 0; i < n.count; ++i) hit |= hit_prim(prims_[n.offset + i], ray);
-      } else {
-        // Visit the child on the ray's near side of the split first.
-        if (neg[n.axis]) {
-          stack[sp++] = node + 1;
-          node = n.offset;
+    if (n.count > 0) {
+      for (uint32_t i = 0; i < n.count; ++i) hit |= hit_prim(prims_[n.offset + i], ray);
+    } else {
+      const uint32_t left = node + 1, right = n.offset;
+      float t_left, t_right;
+      const bool hit_left = slab.hits(nodes_[left].bounds, ray.t_max, &t_left);
+      const bool hit_right = slab.hits(nodes_[right].bounds, ray.t_max, &t_right);
+      if (hit_left && hit_right) {
+        if (t_left <= t_right) {
+          stack[sp++] = {right, t_right};
+          node = left;
         } else {
-          stack[sp++] = n.offset;
-          node = node + 1;
+          stack[sp++] = {left, t_left};
+          node = right;
         }
         continue;
       }
+      if (hit_left || hit_right) {
+        node = hit_left ? left : right;
+        continue;
+      }
     }
-    if (sp == 0) break;
-    node = stack[--sp];
+    // Pop the next subtree that can still hold a closer hit.
+    for (;;) {
+      if (sp == 0) return hit;
+      const Entry e = stack[--sp];
+      if (e.t_near <= ray.t_max) {
+        node = e.node;
+        break;
+      }
+    }
   }
-  return hit;
 }
 
 template <class OccludedPrim>
 bool Bvh2::occluded(const Ray& ray, OccludedPrim&& occluded_prim) const {
   if (nodes_.empty()) return false;
   const SlabRay slab(ray);
+  if (!slab.hits(nodes_[0].bounds, ray.t_max)) return false;
   uint32_t stack[64];
   int sp = 0;
   uint32_t node = 0;
   for (;;) {
     const Bvh2Node& n = nodes_[node];
-    if (slab.hits(n.bounds, ray.t_max)) {
-      if (n.count > 0) {
-        for (uint32_t i = 0; i < n.count; ++i)
-          if (occluded_prim(prims_[n.offset + i], ray)) return true;
-      } else {
-        stack[sp++] = n.offset;
-        node = node + 1;
+    if (n.count > 0) {
+      for (uint32_t i = 0; i < n.count; ++i)
+        if (occluded_prim(prims_[n.offset + i], ray)) return true;
+    } else {
+      // Any hit ends the search, so no ordering: just skip children the ray misses.
+      const uint32_t left = node + 1, right = n.offset;
+      const bool hit_left = slab.hits(nodes_[left].bounds, ray.t_max);
+      const bool hit_right = slab.hits(nodes_[right].bounds, ray.t_max);
+      if (hit_left) {
+        if (hit_right) stack[sp++] = right;
+        node = left;
+        continue;
+      }
+      if (hit_right) {
+        node = right;
         continue;
       }
     }
-    if (sp == 0) break;
+    if (sp == 0) return false;
     node = stack[--sp];
   }
-  return false;
 }
 
 }  // namespace torte

@@ -25,8 +25,10 @@ struct Vec3f {
   float x = 0, y = 0, z = 0;
   constexpr Vec3f() = default;
   constexpr Vec3f(float x_, float y_, float z_) : x(x_), y(y_), z(z_) {}
-  constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-  constexpr float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+  // Indexing by address: x, y, z are contiguous (standard layout, no padding); a ternary chain would cost
+  // branches in the hot loops that index by a computed axis.
+  float operator[](int i) const { return (&x)[i]; }
+  float& operator[](int i) { return (&x)[i]; }
   constexpr Vec3f operator+(Vec3f b) const { return {x + b.x, y + b.y, z + b.z}; }
   constexpr Vec3f operator-(Vec3f b) const { return {x - b.x, y - b.y, z - b.z}; }
   constexpr Vec3f operator-() const { return {-x, -y, -z}; }
@@ -38,6 +40,7 @@ struct Vec3f {
   constexpr bool operator==(const Vec3f&) const = default;
 };
 
+static_assert(sizeof(Vec3f) == 12);
 constexpr Vec3f operator*(float s, Vec3f v) { return v * s; }
 constexpr float dot(Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 constexpr Vec3f cross(Vec3f a, Vec3f b) {

@@ -20,21 +20,31 @@
 
 namespace torte {
 
-bool intersect_triangle(const Ray& ray, Vec3f p0, Vec3f p1, Vec3f p2, TriangleHit* hit) {
+WatertightRay::WatertightRay(const Ray& ray) : o(ray.o), t_max(ray.t_max) {
   // Permute so the dominant direction axis becomes z; swapping x and y for a negative z keeps the winding,
   // which only matters for the sign of det (both faces count here, so it is cosmetic but cheap).
-  const int kz = max_dimension(abs(ray.d));
-  int kx = kz == 2 ? 0 : kz + 1;
-  int ky = kx == 2 ? 0 : kx + 1;
+  kz = max_dimension(abs(ray.d));
+  kx = kz == 2 ? 0 : kz + 1;
+  ky = kx == 2 ? 0 : kx + 1;
   if (ray.d[kz] < 0) std::swap(kx, ky);
-  if (ray.d[kz] == 0) return false;  // zero (or NaN) direction
+  valid = ray.d[kz] != 0;  // false for a zero (or NaN) direction
+  sx = ray.d[kx] / ray.d[kz];
+  sy = ray.d[ky] / ray.d[kz];
+  sz = 1.0f / ray.d[kz];
+}
 
-  const float sx = ray.d[kx] / ray.d[kz];
-  const float sy = ray.d[ky] / ray.d[kz];
-  const float sz = 1.0f / ray.d[kz];
+bool intersect_triangle(const Ray& ray, Vec3f p0, Vec3f p1, Vec3f p2, TriangleHit* hit) {
+  return intersect_triangle(WatertightRay(ray), ray.t_max, p0, p1, p2, hit);
+}
+
+bool intersect_triangle(const WatertightRay& wr, float t_max, Vec3f p0, Vec3f p1, Vec3f p2, TriangleHit* hit) {
+  if (!wr.valid) return false;
+  const int kx = wr.kx, ky = wr.ky, kz = wr.kz;
+  const float sx = wr.sx, sy = wr.sy, sz = wr.sz;
+  const Vec3f& o = wr.o;
 
   // Vertices relative to the ray origin, sheared so the ray runs along +z through (0, 0).
-  const Vec3f a = p0 - ray.o, b = p1 - ray.o, c = p2 - ray.o;
+  const Vec3f a = p0 - o, b = p1 - o, c = p2 - o;
   const float ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
   const float bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
   const float cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
@@ -60,7 +70,7 @@ bool intersect_triangle(const Ray& ray, Vec3f p0, Vec3f p1, Vec3f p2, TriangleHi
   const float t_scaled = u * az + v * bz + w * cz;
   const float inv_det = 1.0f / det;
   const float t = t_scaled * inv_det;
-  if (!(t > 0 && t < ray.t_max)) return false;  // also rejects NaN
+  if (!(t > 0 && t < t_max)) return false;  // also rejects NaN
   if (hit) {
     hit->t = t;
     hit->b1 = v * inv_det;

@@ -62,12 +62,13 @@ void Scene::triangle_vertices(uint32_t prim, Vec3f* p0, Vec3f* p1, Vec3f* p2) co
 
 bool Scene::intersect(Ray& ray, Hit* hit) const {
   const uint32_t ntri = triangle_count();
+  const WatertightRay wr(ray);
   return bvh_.intersect(ray, [&](uint32_t prim, Ray& r) {
     if (prim < ntri) {
       Vec3f p0, p1, p2;
       triangle_vertices(prim, &p0, &p1, &p2);
       TriangleHit th;
-      if (!intersect_triangle(r, p0, p1, p2, &th)) return false;
+      if (!intersect_triangle(wr, r.t_max, p0, p1, p2, &th)) return false;
       r.t_max = th.t;
       *hit = {th.t, prim, th.b1, th.b2};
       return true;
@@ -83,12 +84,12 @@ bool Scene::intersect(Ray& ray, Hit* hit) const {
 
 bool Scene::occluded(const Ray& ray) const {
   const uint32_t ntri = triangle_count();
+  const WatertightRay wr(ray);
   return bvh_.occluded(ray, [&](uint32_t prim, const Ray& r) {
     if (prim < ntri) {
       Vec3f p0, p1, p2;
       triangle_vertices(prim, &p0, &p1, &p2);
-      TriangleHit th;
-      return intersect_triangle(r, p0, p1, p2, &th);
+      return intersect_triangle(wr, r.t_max, p0, p1, p2, nullptr);
     }
     float t;
     Vec2f uv;
