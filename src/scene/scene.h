@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "accel/bvh2.h"
+#include "accel/hit.h"
 #include "camera/camera.h"
 #include "core/sampling.h"
 #include "geometry/mesh.h"
@@ -14,14 +15,7 @@
 
 namespace torte {
 
-constexpr uint32_t kNoHit = 0xffffffffu;
-
-// What the trace stage records per ray (16 bytes): enough to rebuild the surface later.
-struct Hit {
-  float t = kInfinity;
-  uint32_t prim = kNoHit;  // global primitive id: [0, triangle_count) triangles, then quadrics
-  float b1 = 0, b2 = 0;    // triangle barycentrics, or a quadric's (u, v)
-};
+// Hit (accel/hit.h): prim is a global primitive id, [0, triangle_count) triangles, then quadrics.
 
 // Everything shading needs about a hit point.
 struct SurfaceHit {
