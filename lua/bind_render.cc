@@ -115,7 +115,9 @@ int l_render(lua_State* L) {
   }
   // The seed's direct-lighting renderer samples every light at every hit; path tracing picks one by power.
   s.sample_all_lights = kw.boolean("sample_all_lights", s.integrator == IntegratorKind::Direct);
-  s.seed = uint64_t(kw.integer("seed", 0));
+  const int seed = kw.integer("seed", 0);
+  if (seed < 0) kw.fail("seed", "must be a non-negative integer");
+  s.seed = uint64_t(seed);
   if (auto f = kw.object<Filter>("filter", true)) s.filter = *f;
   kw.finish();
   if (s.width <= 0 || s.height <= 0) kw.fail("width", "and 'height' must be positive");
@@ -203,6 +205,7 @@ int image_mean(lua_State* L) {
 
 int image_index(lua_State* L) {
   auto img = to_object<RenderedImage>(L, 1);
+  if (!img) throw Error("image fields need an image");
   const std::string key = luaL_checkstring(L, 2);
   if (key == "width") {
     lua_pushinteger(L, img->image.width);

@@ -45,12 +45,16 @@ void push_object(lua_State* L, std::shared_ptr<T> object) {
   new (mem) std::shared_ptr<T>(std::move(object));
   if (luaL_newmetatable(L, LuaName<T>::value)) {
     lua_pushcfunction(L, [](lua_State* L2) -> int {
-      static_cast<std::shared_ptr<T>*>(lua_touserdata(L2, 1))->~shared_ptr<T>();
+      // Only ever called by the collector on a live T, but check anyway: a script must not be able to crash us.
+      if (auto* p = static_cast<std::shared_ptr<T>*>(luaL_testudata(L2, 1, LuaName<T>::value))) p->reset();
       return 0;
     });
     lua_setfield(L, -2, "__gc");
     lua_pushstring(L, LuaName<T>::value);
     lua_setfield(L, -2, "__name");
+    // getmetatable() returns this string instead of the table, so scripts cannot call __gc or __index directly.
+    lua_pushstring(L, LuaName<T>::value);
+    lua_setfield(L, -2, "__metatable");
   }
   lua_setmetatable(L, -2);
 }
@@ -59,7 +63,7 @@ void push_object(lua_State* L, std::shared_ptr<T> object) {
 template <class T>
 std::shared_ptr<T> to_object(lua_State* L, int idx) {
   auto* p = static_cast<std::shared_ptr<T>*>(luaL_testudata(L, idx, LuaName<T>::value));
-  return p ? *p : nullptr;
+  return p ? *p : nullptr;  // a collected (reset) object also comes back as nullptr
 }
 
 // Name of a Lua value's type for error messages (torte types by their own names).

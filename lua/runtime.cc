@@ -137,7 +137,8 @@ int run_script(const RunOptions& options) {
   }
   if (ctx.interrupted && code == kExitOk) code = kExitInterrupted;
   lua_close(L);
-  if (!options.quiet && ctx.renders > 0) {
+  // After an error, the error line is the last word: no summary.
+  if (!options.quiet && ctx.renders > 0 && code != kExitError) {
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double script = std::max(0.0, total - ctx.build_seconds - ctx.render_seconds - ctx.write_seconds);
     std::fprintf(stderr,

@@ -33,10 +33,16 @@ end
 -- Writes the image to `path` (the extension picks the format). High-dynamic-range outputs (.exr, .hdr) get a
 -- PNG preview beside them with the same name.
 function torte.save(image, path, options)
-  image:write(path, options)
-  local stem, ext = path:match("^(.*)%.(%w+)$")
-  if ext and (ext:lower() == "exr" or ext:lower() == "hdr") then
-    image:write(stem .. ".png", options)
+  local ok, err = pcall(function()
+    image:write(path, options)
+    local stem, ext = path:match("^(.*)%.(%w+)$")
+    if ext and (ext:lower() == "exr" or ext:lower() == "hdr") then
+      image:write(stem .. ".png", options)
+    end
+  end)
+  if not ok then
+    -- Report the error at the script line that called torte.save, not inside this library.
+    error(tostring(err):gsub("^%[torte%][^:]*:%d+: ", ""), 2)
   end
   return image
 end

@@ -39,7 +39,7 @@ const char kUsage[] =
     "Ctrl-C stops a render and still writes the image with the samples done so far.\n";
 
 [[noreturn]] void usage_error(const std::string& msg) {
-  std::fprintf(stderr, "torte: error: %s\n(run 'torte --help' for usage)\n", msg.c_str());
+  std::fprintf(stderr, "torte: error: %s (see 'torte --help')\n", msg.c_str());
   std::exit(torte::lua::kExitError);
 }
 

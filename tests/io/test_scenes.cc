@@ -1,0 +1,185 @@
+// Every scene in scenes/*.lua runs through the built binary at a tiny size and writes its EXR and the PNG preview
+// beside it; scene-specific arguments (integrator, camera) work and unknown arguments are rejected by name.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+  fs::path path;
+  explicit TempDir(const std::string& name)
+      : path(fs::temp_directory_path() / ("torte_scenes_" + std::to_string(getpid()) + "_" + name)) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  std::string operator/(const std::string& file) const { return (path / file).string(); }
+};
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+struct Result {
+  int code = -1;  // exit code, or -1 if the process did not exit normally (e.g. it crashed)
+  std::string err;
+};
+
+// Runs torte with `args` from the source directory; stdout and stderr go to files in `dir`.
+Result run_torte(const TempDir& dir, const std::vector<std::string>& args) {
+  std::string cmd = "cd " + quote(TORTE_SOURCE_DIR) + " && " + quote(TORTE_BINARY);
+  for (const std::string& a : args) cmd += " " + quote(a);
+  const std::string err_path = dir / "stderr.txt";
+  cmd += " </dev/null >" + quote(dir / "stdout.txt") + " 2>" + quote(err_path);
+  const int status = std::system(cmd.c_str());
+  Result r;
+  if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
+  r.err = read_file(err_path);
+  return r;
+}
+
+std::vector<fs::path> scene_scripts() {
+  std::vector<fs::path> scenes;
+  for (const auto& e : fs::directory_iterator(fs::path(TORTE_SOURCE_DIR) / "scenes"))
+    if (e.is_regular_file() && e.path().extension() == ".lua") scenes.push_back(e.path());
+  std::sort(scenes.begin(), scenes.end());
+  return scenes;
+}
+
+const std::vector<std::string> kTiny = {"width=32", "height=32", "spp=2"};
+
+// Renders `scene` tiny with extra arguments; checks the run and that the EXR and its PNG exist.
+void check_renders(const TempDir& dir, const fs::path& scene, const std::vector<std::string>& extra) {
+  std::string stem = scene.stem().string();
+  for (const std::string& a : extra) stem += "_" + a.substr(a.find('=') + 1);
+  const std::string exr = dir / (stem + ".exr"), png = dir / (stem + ".png");
+  std::vector<std::string> args{"--quiet", scene.string()};
+  args.insert(args.end(), kTiny.begin(), kTiny.end());
+  args.insert(args.end(), extra.begin(), extra.end());
+  args.push_back("output=" + exr);
+  const Result r = run_torte(dir, args);
+  INFO("scene " << scene << ", stderr: " << r.err);
+  CHECK(r.code == 0);
+  CHECK(r.err.empty());  // --quiet, no warnings (e.g. no NaN/Inf samples dropped)
+  CHECK(fs::exists(exr));
+  CHECK(fs::exists(png));
+  if (fs::exists(exr)) CHECK(fs::file_size(exr) > 0);
+  if (fs::exists(png)) CHECK(fs::file_size(png) > 0);
+}
+
+}  // namespace
+
+// One test case per scene file (registered at start-up, so ctest lists them separately and each stays fast).
+namespace {
+
+void renders_tiny(const fs::path& scene) {
+  TempDir dir("tiny_" + scene.stem().string());
+  check_renders(dir, scene, {});
+}
+
+void rejects_unknown_argument(const fs::path& scene) {
+  TempDir dir("unknown_" + scene.stem().string());
+  const std::string exr = dir / "never.exr";
+  const Result r = run_torte(dir, {"--quiet", scene.string(), "width=32", "widht=3", "output=" + exr});
+  INFO("stderr: " << r.err);
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Catch::StartsWith("torte: error: "));
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);  // one line
+  CHECK_THAT(r.err, Catch::Contains("'widht'"));
+  CHECK_THAT(r.err, Catch::Contains(scene.filename().string()));
+  CHECK(!fs::exists(exr));  // rejected before rendering
+}
+
+class SceneTest : public Catch::ITestInvoker {
+ public:
+  SceneTest(void (*body)(const fs::path&), fs::path scene) : body_(body), scene_(std::move(scene)) {}
+  void invoke() const override { body_(scene_); }
+
+ private:
+  void (*body_)(const fs::path&);
+  fs::path scene_;
+};
+
+const bool kSceneTestsRegistered = [] {
+  std::vector<fs::path> scenes;
+  try {
+    scenes = scene_scripts();
+  } catch (const std::exception&) {
+    return false;  // no scenes directory: "the scenes directory holds the expected scenes" fails
+  }
+  for (const fs::path& scene : scenes) {
+    const std::string file = scene.filename().string();
+    const std::string tiny = "scenes: " + file + " renders at a tiny size and writes EXR and PNG";
+    const std::string unknown = "scenes: " + file + " rejects an unknown argument, naming it";
+    // The registry keeps the invokers for the whole run.
+    Catch::AutoReg(new SceneTest(renders_tiny, scene), CATCH_INTERNAL_LINEINFO, Catch::StringRef(),
+                   Catch::NameAndTags{tiny, "[scenes]"});
+    Catch::AutoReg(new SceneTest(rejects_unknown_argument, scene), CATCH_INTERNAL_LINEINFO, Catch::StringRef(),
+                   Catch::NameAndTags{unknown, "[scenes]"});
+  }
+  return true;
+}();
+
+}  // namespace
+
+TEST_CASE("scenes: the scenes directory holds the expected scenes", "[scenes]") {
+  std::vector<std::string> names;
+  for (const fs::path& p : scene_scripts()) names.push_back(p.filename().string());
+  INFO("found " << names.size() << " scenes");
+  CHECK(kSceneTestsRegistered);
+  for (const char* expected : {"cornell-box.lua", "shapes.lua", "lights.lua"})
+    CHECK(std::find(names.begin(), names.end(), expected) != names.end());
+}
+
+TEST_CASE("scenes: the Cornell box with the direct-lighting integrator", "[scenes]") {
+  TempDir dir("cornell_direct");
+  check_renders(dir, fs::path(TORTE_SOURCE_DIR) / "scenes" / "cornell-box.lua", {"integrator=direct"});
+}
+
+TEST_CASE("scenes: shapes.lua and lights.lua with direct lighting", "[scenes]") {
+  TempDir dir("direct");
+  const fs::path scenes = fs::path(TORTE_SOURCE_DIR) / "scenes";
+  SECTION("shapes") { check_renders(dir, scenes / "shapes.lua", {"integrator=direct", "max_depth=1"}); }
+  SECTION("lights") { check_renders(dir, scenes / "lights.lua", {"integrator=direct"}); }
+}
+
+TEST_CASE("scenes: the camera argument of lights.lua", "[scenes]") {
+  TempDir dir("camera");
+  const fs::path scenes = fs::path(TORTE_SOURCE_DIR) / "scenes";
+  SECTION("orthographic") { check_renders(dir, scenes / "lights.lua", {"camera=orthographic"}); }
+  SECTION("perspective") { check_renders(dir, scenes / "lights.lua", {"camera=perspective"}); }
+  SECTION("lights, an unknown camera is rejected naming the argument") {
+    const Result r = run_torte(dir, {"--quiet", (scenes / "lights.lua").string(), "camera=fisheye",
+                                     "output=" + (dir / "never.exr")});
+    INFO("stderr: " << r.err);
+    CHECK(r.code == 1);
+    CHECK_THAT(r.err, Catch::StartsWith("torte: error: "));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_THAT(r.err, Catch::Contains("'camera'"));
+    CHECK_THAT(r.err, Catch::Contains("fisheye"));
+  }
+}
