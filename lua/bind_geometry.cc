@@ -179,11 +179,18 @@ int l_polygon(lua_State* L) {
   return push_mesh_shape(L, std::move(s), make_polygon(vs), fn);
 }
 
-// mesh{positions=..., indices=... (0-based), normals=?, uvs=?}
+// mesh{positions=..., indices=... (0-based), normals=?, uvs=?}, or mesh{mesh=<torte.mesh>} / mesh{file="path"}
 int l_mesh(lua_State* L) {
   const char* fn = "torte.shape.mesh";
   KwArgs kw(L, 1, fn);
   ShapeDesc s = common_shape(kw);
+  if (auto shared = mesh_argument(kw)) {  // shared, not copied: meshes are never changed after creation
+    kw.finish();
+    s.kind = ShapeDesc::Kind::Mesh;
+    s.mesh = std::move(shared);
+    push_object(L, std::make_shared<ShapeDesc>(std::move(s)));
+    return 1;
+  }
   TriangleMesh mesh;
   const std::vector<double> pos = kw.numbers("positions");
   const std::vector<double> idx = kw.numbers("indices");

@@ -21,6 +21,7 @@ template <> struct LuaName<CameraDesc> { static constexpr const char* value = "t
 template <> struct LuaName<SceneBuilder> { static constexpr const char* value = "torte.scene"; };
 template <> struct LuaName<Filter> { static constexpr const char* value = "torte.filter"; };
 template <> struct LuaName<RenderedImage> { static constexpr const char* value = "torte.image"; };
+template <> struct LuaName<TriangleMesh> { static constexpr const char* value = "torte.mesh"; };
 
 // Settings of the whole run that bindings consult (from the command line).
 struct RunContext {
@@ -41,5 +42,8 @@ void open_materials(lua_State* L, int torte_index);  // torte.material.*
 void open_lights(lua_State* L, int torte_index);     // torte.light.*
 void open_cameras(lua_State* L, int torte_index);    // torte.camera.*
 void open_render(lua_State* L, int torte_index);     // torte.scene, torte.render, torte.filter.*, images
+void open_meshes(lua_State* L, int torte_index);     // torte.mesh.*, torte.clock
+// torte.shape.mesh's mesh=<torte.mesh> or file="path" (loaded now); nullptr when neither key is given.
+std::shared_ptr<const TriangleMesh> mesh_argument(KwArgs& kw);
 
 }  // namespace torte::lua

@@ -380,7 +380,7 @@ TEST_CASE("Pcg32 matches the reference generator and is deterministic", "[math][
   CHECK(d1.next_u32() == d2.next_u32());
 }
 
-TEST_CASE("Pcg32 floats lie in [0, 1) and look uniform", "[math][rng]") {
+TEST_CASE("Pcg32 floats lie in the unit interval, 1 excluded, and look uniform", "[math][rng]") {
   Pcg32 rng(3, 17);
   const int n = 200000;
   double sum = 0, sum2 = 0;

@@ -454,7 +454,7 @@ double ellipsoid_area(double a, double b, double c) {
 
 }  // namespace
 
-TEST_CASE("quadric: under non-uniform scale, E[1/pdf] is the world area and pdf_area matches", "[quadric][area]") {
+TEST_CASE("quadric: under non-uniform scale, the mean of 1/pdf is the world area and pdf_area matches", "[quadric][area]") {
   const double reference = ellipsoid_area(1, 2, 3);
   CHECK(reference == Approx(48.88).epsilon(1e-3));  // Knud Thomsen's approximation, as a sanity check
   const Quadric q = make(QuadricKind::Sphere, translate({1, 2, 3}) * rotate(30, {1, 1, 1}) * scale({1, 2, 3}));
