@@ -1,0 +1,20 @@
+// Stanford PLY reader: ascii, binary_little_endian and binary_big_endian.
+//
+// Vertex properties x y z (any scalar type, any order), optional nx ny nz and uvs (u v, s t, texture_u texture_v
+// or texture_s texture_t); faces from the list property vertex_indices (or vertex_index), polygons fan-
+// triangulated from their first vertex. Other elements and properties, including list properties on vertices,
+// are skipped. Normals are renormalized (zero ones stay zero: the renderer then uses the geometric normal).
+#pragma once
+#include <string>
+#include <string_view>
+
+#include "geometry/mesh.h"
+
+namespace torte {
+
+// Throws torte::Error("<path>: ...") naming what is wrong, e.g. "mesh.ply: vertex 1234 of 50002: file ends early".
+TriangleMesh read_ply(const std::string& path);
+// The same for bytes already in memory; `name` starts every error message.
+TriangleMesh parse_ply(std::string_view data, const std::string& name);
+
+}  // namespace torte
