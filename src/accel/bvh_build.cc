@@ -1,0 +1,486 @@
+// Parallel binned-SAH build of the canonical binary BVH (Wald 2007, "On fast construction of SAH-based bounding
+// volume hierarchies"). See bvh_build.h for the pipeline and the determinism argument; bvh_collapse.cc turns the
+// result into wide nodes.
+#include "accel/bvh_build.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+
+namespace torte {
+namespace {
+
+// Parallel grain sizes: below these, task overhead outweighs the work (a 4096-primitive subtree takes ~1 ms).
+constexpr uint32_t kParallelSubtreeMin = 4096;  // node size from which the two subtrees become parallel tasks
+constexpr uint32_t kParallelBinMin = 32768;     // node size from which binning is a parallel_reduce
+constexpr size_t kGrain = 8192;                 // primitives per parallel chunk
+constexpr int kMaxBins = 64;
+constexpr uint32_t kSmallNode = 16;             // nodes up to this size get the exact sorted SAH split
+constexpr int kMaxLeafSize = 16;  // one or two vector loads per leaf; leaf_count is a byte anyway
+
+int ceil_log2(uint32_t n) {
+  int k = 0;
+  while ((uint64_t(1) << k) < n) ++k;
+  return k;
+}
+
+// 28 bytes. The builder partitions these in place; the centroid is recomputed from the bounds (three adds and
+// multiplies) rather than stored, which keeps each reference 12 bytes smaller to stream through.
+struct PrimRef {
+  Bounds3f bounds;
+  uint32_t prim;
+};
+inline Vec3f centroid(const PrimRef& r) { return (r.bounds.lo + r.bounds.hi) * 0.5f; }
+
+// One bin, 28 bytes: the bounds of the primitives whose centroids fall in it, and their count. Plain floats
+// (no member initialisers) so declaring a BinSet costs nothing: reset() initialises only the bins in use, which
+// matters because most nodes are small (initialising all 192 bins cost ~2 GB of stores for 1M triangles).
+struct Bin {
+  float lo[3], hi[3];
+  uint32_t count;
+  void extend(const Bounds3f& b) {
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], b.lo[a]);
+      hi[a] = std::max(hi[a], b.hi[a]);
+    }
+  }
+  Bounds3f bounds() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+};
+
+// Per-axis bins of one node: 3 * 64 * 28 = 5376 bytes (only options.bins per axis are used).
+struct BinSet {
+  Bin bin[3][kMaxBins];
+  explicit BinSet(int nbins) {
+    constexpr float inf = kInfinity;
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < nbins; ++i) bin[a][i] = {{inf, inf, inf}, {-inf, -inf, -inf}, 0};
+  }
+  void merge(const BinSet& o, int nbins) {
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < nbins; ++i) {
+        bin[a][i].extend(o.bin[a][i].bounds());
+        bin[a][i].count += o.bin[a][i].count;
+      }
+  }
+};
+
+// Node bounds and centroid bounds of a primitive range: the inputs every node's split search needs.
+struct RangeBounds {
+  Bounds3f nb, cb;
+  void extend(const PrimRef& r) {
+    nb.extend(r.bounds);
+    cb.extend(centroid(r));
+  }
+  void extend(const RangeBounds& o) {
+    nb.extend(o.nb);
+    cb.extend(o.cb);
+  }
+};
+
+class Builder {
+ public:
+  Builder(const BvhBuildOptions& options, std::vector<PrimRef>& refs, BinaryBvhNode* nodes)
+      : o_(options), refs_(refs), nodes_(nodes), block_shift_(std::countr_zero(uint32_t(options.leaf_block_size))),
+        block_mask_(uint32_t(options.leaf_block_size) - 1) {}
+
+  void build(uint32_t node, uint32_t begin, uint32_t end, int depth, const RangeBounds& rb) {
+    nodes_[node].bounds = rb.nb;
+    const uint32_t count = end - begin;
+    const bool may_be_leaf = count <= uint32_t(o_.max_leaf_size);
+    const Vec3f extent = rb.cb.diagonal();
+    RangeBounds left, right;
+    uint32_t mid = begin;  // mid == begin: make a leaf
+    if (count == 1) {
+      // a leaf
+    } else if (max_component(extent) <= 0) {
+      // All centroids coincide: no plane separates them and the SAH cannot tell halves apart. Keep them
+      // together if they fit, otherwise halve the list so leaves stay within max_leaf_size.
+      if (!may_be_leaf) mid = halve(begin, end, -1, &left, &right);
+    } else {
+      // Median splits once unbalanced SAH splits could exceed kMaxBvhDepth: each one halves the count, so
+      // depth + ceil_log2(count) <= kMaxBvhDepth holds for every node (it does at the root: n < 2^31).
+      // A zero-area node (primitives on one axis-aligned line) leaves the SAH undefined: median too.
+      const bool sah = o_.bins >= 2 && depth + ceil_log2(count) < kMaxBvhDepth && rb.nb.surface_area() > 0;
+      // Small nodes (most nodes) are split exactly, after sorting centroids: cheaper than 3 x bins bins, whose
+      // initialisation and sweeps cost more than binning a few primitives, and never worse.
+      const bool small = count <= kSmallNode;
+      Split s;
+      if (sah && (small ? sorted_split(begin, end, rb, &s) : find_split(begin, end, rb, &s))) {
+        if (!may_be_leaf || s.cost < leaf_sah_cost(count, o_)) {
+          mid = small ? apply_sorted_split(begin, end, s, &left, &right)
+                      : partition(begin, end, rb.cb, s, &left, &right);
+          // Binning and partitioning share bin_of, so both sides are non-empty; never risk an oversized leaf.
+          if (mid == begin || mid == end) mid = halve(begin, end, max_dimension(extent), &left, &right);
+        }
+      } else if (!may_be_leaf) {
+        mid = halve(begin, end, max_dimension(extent), &left, &right);
+      }
+    }
+    if (mid == begin) {
+      nodes_[node].first = begin;
+      nodes_[node].count = count;
+      return;
+    }
+    // Children as an adjacent pair from the shared counter: subtrees built concurrently never touch the same
+    // slot, and the node array needs no pass afterwards. At most 2n - 1 nodes exist (n leaves at most).
+    const uint32_t pair = next_node_.fetch_add(2, std::memory_order_relaxed);
+    nodes_[node].first = pair;
+    nodes_[node].count = 0;
+    auto build_left = [&] { build(pair, begin, mid, depth + 1, left); };
+    auto build_right = [&] { build(pair + 1, mid, end, depth + 1, right); };
+    if (o_.parallel && count >= kParallelSubtreeMin) {
+      tbb::parallel_invoke(build_left, build_right);
+    } else {
+      build_left();
+      build_right();
+    }
+  }
+
+  uint32_t node_count() const { return next_node_.load(); }
+
+ private:
+  struct Split {
+    int axis = 0;
+    int bin = 0;     // primitives in bins [0, bin] go left (sorted split: positions [0, bin] in sorted order)
+    float cost = 0;  // SAH cost in units of options' costs
+    Bounds3f left, right;
+  };
+
+  // Leaf blocks of `n` primitives (leaf_block_size is a power of two: a shift, where a division would cost a
+  // third of the build time in the SAH sweeps of the many small nodes).
+  float blocks(uint32_t n) const { return float((n + block_mask_) >> block_shift_); }
+  // Half the surface area without the empty-box test: the sweep only evaluates planes with primitives on both
+  // sides, and SAH ratios do not care about the factor 2.
+  static float half_area(const Bounds3f& b) {
+    const Vec3f d = b.diagonal();
+    return d.x * d.y + d.y * d.z + d.z * d.x;
+  }
+
+  // Maps a centroid coordinate to its bin; the same arithmetic serves binning and partitioning, so both
+  // always agree. The (1 - 1e-6) keeps the largest centroid below bin `bins` after rounding; a scale that
+  // overflows (denormal extent) is 0, meaning "no binning on this axis".
+  float bin_scale(float extent) const {
+    const float k = float(o_.bins) * (1 - 1e-6f) / extent;
+    return extent > 0 && std::isfinite(k) ? k : 0.0f;
+  }
+  int bin_of(float c, float lo, float k) const { return std::min(int((c - lo) * k), o_.bins - 1); }
+
+  void bin_range(uint32_t begin, uint32_t end, const Bounds3f& cb, const float k[3], BinSet& bins) const {
+    const bool all = k[0] > 0 && k[1] > 0 && k[2] > 0;
+    for (uint32_t i = begin; i < end; ++i) {
+      const PrimRef& r = refs_[i];
+      const Vec3f c = centroid(r);
+      if (all) {  // the common case, without the per-axis test
+        for (int a = 0; a < 3; ++a) {
+          Bin& b = bins.bin[a][bin_of(c[a], cb.lo[a], k[a])];
+          b.extend(r.bounds);
+          ++b.count;
+        }
+        continue;
+      }
+      for (int a = 0; a < 3; ++a) {
+        if (k[a] == 0) continue;
+        Bin& b = bins.bin[a][bin_of(c[a], cb.lo[a], k[a])];
+        b.extend(r.bounds);
+        ++b.count;
+      }
+    }
+  }
+
+  // Best binned SAH split over the three axes; false if no plane leaves primitives on both sides. Not inlined:
+  // its 5 KB of bins would otherwise sit in every frame of the recursion (60 deep, on 4 MB TBB worker stacks).
+  [[gnu::noinline]] bool find_split(uint32_t begin, uint32_t end, const RangeBounds& rb, Split* best) const {
+    const int nbins = o_.bins;
+    const Vec3f extent = rb.cb.diagonal();
+    float k[3];
+    for (int a = 0; a < 3; ++a) k[a] = bin_scale(extent[a]);
+    BinSet bins(nbins);
+    if (o_.parallel && end - begin >= kParallelBinMin) {
+      // min/max and integer sums are exact in any order: the result does not depend on how TBB splits.
+      bins = tbb::parallel_reduce(
+          tbb::blocked_range<uint32_t>(begin, end, kGrain), BinSet(nbins),
+          [&](const tbb::blocked_range<uint32_t>& r, BinSet acc) {
+            bin_range(r.begin(), r.end(), rb.cb, k, acc);
+            return acc;
+          },
+          [nbins](BinSet a, const BinSet& b) {
+            a.merge(b, nbins);
+            return a;
+          });
+    } else {
+      bin_range(begin, end, rb.cb, k, bins);
+    }
+    const float inv_area = 1 / half_area(rb.nb);
+    const uint32_t total = end - begin;
+    float right_area[kMaxBins];
+    uint32_t right_count[kMaxBins];
+    bool found = false;
+    for (int a = 0; a < 3; ++a) {
+      if (k[a] == 0) continue;
+      const Bin* b = bins.bin[a];
+      // Sweep from the right to record the area of everything right of each plane, then from the left.
+      Bounds3f r;
+      uint32_t rc = 0;
+      for (int i = nbins - 1; i > 0; --i) {
+        r.extend(b[i].bounds());
+        rc += b[i].count;
+        right_area[i] = half_area(r);
+        right_count[i] = rc;
+      }
+      Bounds3f l;
+      uint32_t lc = 0;
+      for (int i = 0; i < nbins - 1; ++i) {
+        l.extend(b[i].bounds());
+        lc += b[i].count;
+        if (lc == 0 || lc == total) continue;
+        const float children = half_area(l) * blocks(lc) + right_area[i + 1] * blocks(right_count[i + 1]);
+        const float cost = o_.traversal_cost + o_.intersection_cost * children * inv_area;
+        if (!found || cost < best->cost) {
+          best->axis = a;
+          best->bin = i;
+          best->cost = cost;
+          found = true;
+        }
+      }
+    }
+    if (!found) return false;
+    best->left = best->right = Bounds3f{};
+    for (int i = 0; i < nbins; ++i)
+      (i <= best->bin ? best->left : best->right).extend(bins.bin[best->axis][i].bounds());
+    return true;
+  }
+
+  // Stable sort of at most kSmallNode finite keys by counting ranks (ties ordered by index, so the result is
+  // deterministic): n^2 compares without branches, where an insertion sort's mispredictions cost 20 % of the
+  // build.
+  static void sort_small(uint8_t* order, const float* key, uint32_t n) {
+    for (uint32_t i = 0; i < n; ++i) {
+      uint32_t rank = 0;
+      for (uint32_t j = 0; j < n; ++j) rank += uint32_t(key[j] < key[i]) | (uint32_t(key[j] == key[i]) & (j < i));
+      order[rank] = uint8_t(i);
+    }
+  }
+
+  // Exact SAH over every position of the centroids sorted along each axis (count <= kSmallNode).
+  bool sorted_split(uint32_t begin, uint32_t end, const RangeBounds& rb, Split* best) const {
+    const uint32_t n = end - begin;
+    const Vec3f extent = rb.cb.diagonal();
+    const float inv_area = 1 / half_area(rb.nb);
+    bool found = false;
+    for (int a = 0; a < 3; ++a) {
+      if (!(extent[a] > 0)) continue;
+      float key[kSmallNode], right_area[kSmallNode];
+      uint8_t order[kSmallNode];
+      for (uint32_t i = 0; i < n; ++i) key[i] = centroid(refs_[begin + i])[a];
+      sort_small(order, key, n);
+      Bounds3f r;
+      for (uint32_t i = n - 1; i > 0; --i) {
+        r.extend(refs_[begin + order[i]].bounds);
+        right_area[i] = half_area(r);
+      }
+      Bounds3f l;
+      for (uint32_t i = 0; i + 1 < n; ++i) {
+        l.extend(refs_[begin + order[i]].bounds);
+        const float children = half_area(l) * blocks(i + 1) + right_area[i + 1] * blocks(n - i - 1);
+        const float cost = o_.traversal_cost + o_.intersection_cost * children * inv_area;
+        if (!found || cost < best->cost) {
+          best->axis = a;
+          best->bin = int(i);
+          best->cost = cost;
+          found = true;
+        }
+      }
+    }
+    return found;
+  }
+
+  // Reorders the range as sorted_split sorted it along the chosen axis, and splits after position s.bin.
+  uint32_t apply_sorted_split(uint32_t begin, uint32_t end, const Split& s, RangeBounds* left, RangeBounds* right) {
+    const uint32_t n = end - begin;
+    float key[kSmallNode];
+    uint8_t order[kSmallNode];
+    PrimRef copy[kSmallNode];
+    for (uint32_t i = 0; i < n; ++i) {
+      copy[i] = refs_[begin + i];
+      key[i] = centroid(copy[i])[s.axis];
+    }
+    sort_small(order, key, n);
+    for (uint32_t i = 0; i < n; ++i) refs_[begin + i] = copy[order[i]];
+    const uint32_t mid = begin + uint32_t(s.bin) + 1;
+    *left = range_bounds(begin, mid);
+    *right = range_bounds(mid, end);
+    return mid;
+  }
+
+  // Partitions by the split plane in place (serially, so the order is deterministic), collecting each side's
+  // centroid bounds on the way; node bounds come from the bins.
+  uint32_t partition(uint32_t begin, uint32_t end, const Bounds3f& cb, const Split& s, RangeBounds* left,
+                     RangeBounds* right) {
+    const int a = s.axis;
+    const float lo = cb.lo[a];
+    const float k = bin_scale(cb.hi[a] - cb.lo[a]);
+    // The centroid's axis-a coordinate alone, computed exactly as centroid() computes it.
+    auto goes_left = [&](const PrimRef& r) {
+      return bin_of((r.bounds.lo[a] + r.bounds.hi[a]) * 0.5f, lo, k) <= s.bin;
+    };
+    uint32_t i = begin, j = end;
+    for (;;) {
+      while (i < j && goes_left(refs_[i])) left->cb.extend(centroid(refs_[i++]));
+      while (i < j && !goes_left(refs_[j - 1])) right->cb.extend(centroid(refs_[--j]));
+      if (i >= j) break;
+      std::swap(refs_[i], refs_[j - 1]);
+      left->cb.extend(centroid(refs_[i++]));
+      right->cb.extend(centroid(refs_[--j]));
+    }
+    left->nb = s.left;
+    right->nb = s.right;
+    return i;
+  }
+
+  // Object-median split along `axis` (or none for coincident centroids, axis < 0): the fallback that halves
+  // the count, for the depth bound, for bins = 1 and for degenerate nodes.
+  uint32_t halve(uint32_t begin, uint32_t end, int axis, RangeBounds* left, RangeBounds* right) {
+    const uint32_t mid = begin + (end - begin) / 2;
+    if (axis >= 0)
+      std::nth_element(refs_.begin() + begin, refs_.begin() + mid, refs_.begin() + end,
+                       [axis](const PrimRef& p, const PrimRef& q) { return centroid(p)[axis] < centroid(q)[axis]; });
+    *left = range_bounds(begin, mid);
+    *right = range_bounds(mid, end);
+    return mid;
+  }
+
+  RangeBounds range_bounds(uint32_t begin, uint32_t end) const {
+    auto serial = [&](uint32_t b, uint32_t e, RangeBounds acc) {
+      for (uint32_t i = b; i < e; ++i) acc.extend(refs_[i]);
+      return acc;
+    };
+    if (!o_.parallel || end - begin < kParallelBinMin) return serial(begin, end, {});
+    return tbb::parallel_reduce(
+        tbb::blocked_range<uint32_t>(begin, end, kGrain), RangeBounds{},
+        [&](const tbb::blocked_range<uint32_t>& r, RangeBounds acc) { return serial(r.begin(), r.end(), acc); },
+        [](RangeBounds a, const RangeBounds& b) {
+          a.extend(b);
+          return a;
+        });
+  }
+
+  const BvhBuildOptions& o_;
+  std::vector<PrimRef>& refs_;
+  BinaryBvhNode* nodes_;
+  const int block_shift_;
+  const uint32_t block_mask_;
+  std::atomic<uint32_t> next_node_{1};  // the root is node 0
+};
+
+void check_options(const BvhBuildOptions& o) {
+  if (o.max_leaf_size < 1 || o.max_leaf_size > kMaxLeafSize)
+    throw Error("BVH build: max_leaf_size must be between 1 and " + std::to_string(kMaxLeafSize) + ", got " +
+                std::to_string(o.max_leaf_size) + ".");
+  if (o.bins < 1 || o.bins > kMaxBins)
+    throw Error("BVH build: bins must be between 1 and " + std::to_string(kMaxBins) + ", got " +
+                std::to_string(o.bins) + ".");
+  if (o.leaf_block_size < 1 || o.leaf_block_size > kMaxLeafSize || !std::has_single_bit(unsigned(o.leaf_block_size)))
+    throw Error("BVH build: leaf_block_size must be a power of two between 1 and " + std::to_string(kMaxLeafSize) +
+                ", got " + std::to_string(o.leaf_block_size) + ".");
+  if (!(o.traversal_cost >= 0) || !std::isfinite(o.traversal_cost))
+    throw Error("BVH build: traversal_cost must be finite and non-negative, got " +
+                std::to_string(o.traversal_cost) + ".");
+  if (!(o.intersection_cost > 0) || !std::isfinite(o.intersection_cost))
+    throw Error("BVH build: intersection_cost must be finite and positive, got " +
+                std::to_string(o.intersection_cost) + ".");
+}
+
+// Runs f(chunk, begin, end) over fixed chunks of [0, n): the chunking depends on n only, so per-chunk results
+// combine the same way whatever the thread count.
+template <class F>
+void for_chunks(size_t n, bool parallel, F&& f) {
+  const size_t chunks = (n + kGrain - 1) / kGrain;
+  auto body = [&](size_t c) { f(c, c * kGrain, std::min(n, (c + 1) * kGrain)); };
+  if (parallel && chunks > 1) {
+    tbb::parallel_for(size_t(0), chunks, body);
+  } else {
+    for (size_t c = 0; c < chunks; ++c) body(c);
+  }
+}
+
+// Primitive references of the valid (non-empty, non-NaN) primitives in input order, and their bounds.
+std::vector<PrimRef> make_refs(std::span<const Bounds3f> prims, bool parallel, RangeBounds* root) {
+  auto valid = [](const Bounds3f& b) { return b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z; };
+  const size_t chunks = (prims.size() + kGrain - 1) / kGrain;
+  std::vector<size_t> offset(chunks + 1, 0), first_infinite(chunks, SIZE_MAX);
+  for_chunks(prims.size(), parallel, [&](size_t c, size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      if (!valid(prims[i])) continue;
+      ++offset[c + 1];
+      // Infinite bounds would poison the centroids and the SAH.
+      if (first_infinite[c] == SIZE_MAX && !(is_finite(prims[i].lo) && is_finite(prims[i].hi))) first_infinite[c] = i;
+    }
+  });
+  for (size_t c = 0; c < chunks; ++c) {
+    if (first_infinite[c] != SIZE_MAX)
+      throw Error("BVH build: primitive " + std::to_string(first_infinite[c]) +
+                  " has infinite bounds; only finite shapes can be placed in the scene.");
+    offset[c + 1] += offset[c];
+  }
+  std::vector<PrimRef> refs(offset[chunks]);
+  std::vector<RangeBounds> chunk_bounds(chunks);
+  for_chunks(prims.size(), parallel, [&](size_t c, size_t b, size_t e) {
+    size_t out = offset[c];
+    for (size_t i = b; i < e; ++i) {
+      if (!valid(prims[i])) continue;
+      refs[out] = {prims[i], uint32_t(i)};
+      chunk_bounds[c].extend(refs[out++]);
+    }
+  });
+  for (const RangeBounds& cb : chunk_bounds) root->extend(cb);
+  return refs;
+}
+
+}  // namespace
+
+BinaryBvh build_binary_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options) {
+  check_options(options);
+  // Leaf child references carry the first primitive below kLeafFlag.
+  if (prim_bounds.size() >= size_t(kLeafFlag)) throw Error("BVH build: too many primitives (2^31 at most).");
+  BinaryBvh bvh;
+  RangeBounds root;
+  std::vector<PrimRef> refs = make_refs(prim_bounds, options.parallel, &root);
+  if (refs.empty()) return bvh;
+  bvh.nodes.resize(2 * refs.size() - 1);
+  Builder builder(options, refs, bvh.nodes.data());
+  builder.build(0, 0, uint32_t(refs.size()), 0, root);
+  bvh.nodes.resize(builder.node_count());
+  bvh.nodes.shrink_to_fit();  // from the 2n - 1 bound to the nodes used
+  bvh.prim_indices.resize(refs.size());
+  for_chunks(refs.size(), options.parallel, [&](size_t, size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) bvh.prim_indices[i] = refs[i].prim;
+  });
+  return bvh;
+}
+
+
+float leaf_sah_cost(uint32_t count, const BvhBuildOptions& o) {
+  return o.intersection_cost * float((count + uint32_t(o.leaf_block_size) - 1) / uint32_t(o.leaf_block_size));
+}
+
+float sah_cost(const BinaryBvh& bvh, const BvhBuildOptions& options) {
+  if (bvh.nodes.empty()) return 0;
+  const float root_area = bvh.nodes[0].bounds.surface_area();
+  double cost = 0;
+  for (const BinaryBvhNode& n : bvh.nodes) {
+    const double p = root_area > 0 ? double(n.bounds.surface_area()) / root_area : 1.0;
+    cost += p * (n.count == 0 ? options.traversal_cost : leaf_sah_cost(n.count, options));
+  }
+  return float(cost);
+}
+
+}  // namespace torte
