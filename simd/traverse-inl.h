@@ -1,0 +1,129 @@
+// Parts shared by the single-ray (traverse.cc) and packet (traverse_packet.cc) traversal kernels: ray loading and
+// validation (plain C++), and the vectorised watertight triangle test (per Highway target).
+//
+// Include after <hwy/highway.h> from a file compiled with floating-point contraction off (see traverse.cc): the
+// edge functions must be evaluated as fl(fl(a*b) - fl(c*d)), exactly like geometry/triangle.cc, or the vector
+// test would take different decisions than the scalar one and lose watertightness.
+
+// ---- Plain C++ part (ordinary include guard) ----
+#ifndef TORTE_SIMD_TRAVERSE_COMMON_H_
+#define TORTE_SIMD_TRAVERSE_COMMON_H_
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include "accel/hit.h"
+#include "accel/wide_bvh.h"
+#include "core/ray.h"
+
+namespace torte::traverse_detail {
+
+// Wide levels a traversal stack has room for; a ray pushes at most N - 1 entries per level.
+constexpr int kMaxWideDepth = 64;
+// Far slab distances are scaled up by this (pbrt's gamma(3), as SlabRay and Bounds3f::intersect do) so rays
+// grazing a box never miss it through rounding.
+constexpr float kFarRound = 1 + 2 * 3 * 0x1p-24f;
+
+// Reads ray i. Returns false for rays no triangle can be hit by, which every kernel reports as a miss: non-finite
+// origin or direction components, a zero direction, or t_max NaN or <= 0.
+inline bool load_ray(const RaySoA& rays, size_t i, Ray* ray) {
+  ray->o = {rays.ox[i], rays.oy[i], rays.oz[i]};
+  ray->d = {rays.dx[i], rays.dy[i], rays.dz[i]};
+  ray->t_max = rays.t_max[i];
+  if (!is_finite(ray->o) || !is_finite(ray->d)) return false;
+  if (ray->d.x == 0 && ray->d.y == 0 && ray->d.z == 0) return false;
+  return ray->t_max > 0;  // false for NaN too
+}
+
+// Offsets (in floats, from the start of a WideNode<N>) of the six child-bound arrays, which lie back to back.
+template <int N>
+constexpr uint32_t bound_offset(int axis, bool hi) {
+  return uint32_t((hi ? 3 + axis : axis) * N);
+}
+static_assert(offsetof(WideNode<4>, hi_z) == 5 * 4 * sizeof(float));
+static_assert(offsetof(WideNode<8>, hi_z) == 5 * 8 * sizeof(float));
+
+// The first floats of a node, viewed as one array so near/far planes are picked by a per-ray offset.
+template <int N>
+inline const float* node_floats(const WideNode<N>& node) {
+  return reinterpret_cast<const float*>(&node);
+}
+
+}  // namespace torte::traverse_detail
+#endif  // TORTE_SIMD_TRAVERSE_COMMON_H_
+
+// ---- Per-target part (Highway's include-once-per-target guard) ----
+#if defined(TORTE_SIMD_TRAVERSE_INL_H_TARGET) == defined(HWY_TARGET_TOGGLE)
+#ifdef TORTE_SIMD_TRAVERSE_INL_H_TARGET
+#undef TORTE_SIMD_TRAVERSE_INL_H_TARGET
+#else
+#define TORTE_SIMD_TRAVERSE_INL_H_TARGET
+#endif
+
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace torte::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// Mask as bits (lane i -> bit i); masks here have at most 16 lanes.
+template <class D>
+HWY_INLINE uint32_t MaskBits(D d, hn::Mask<D> m) {
+  uint8_t bytes[8] = {};
+  hn::StoreMaskBits(d, m, bytes);
+  uint32_t bits;
+  std::memcpy(&bits, bytes, sizeof(bits));
+  return bits;
+}
+
+template <class D>
+struct WatertightLanes {
+  hn::Mask<D> hit;   // hit in (0, t_max), decided in float
+  hn::Mask<D> zero;  // an edge function is exactly 0: the caller re-tests these lanes with the scalar test
+  hn::Vec<D> t, b1, b2;
+};
+
+// The watertight test of geometry/triangle.cc, lane by lane, operation for operation (same rounding, no FMA),
+// so every lane takes the decision the scalar code takes. Inputs are the triangle's vertices minus the ray origin,
+// already permuted to the ray's (kx, ky, kz) axes, and the ray's shear (sx, sy, sz). Only `candidates` lanes can
+// hit or be reported as zero lanes.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE WatertightLanes<D> WatertightTest(D d, V akx, V aky, V akz, V bkx, V bky, V bkz, V ckx, V cky, V ckz,
+                                             V sx, V sy, V sz, V t_max, hn::Mask<D> candidates) {
+  using hn::Add;
+  using hn::Mul;
+  using hn::Sub;
+  // Shear so the ray runs along +z through (0, 0).
+  const V ax = Sub(akx, Mul(sx, akz)), ay = Sub(aky, Mul(sy, akz));
+  const V bx = Sub(bkx, Mul(sx, bkz)), by = Sub(bky, Mul(sy, bkz));
+  const V cx = Sub(ckx, Mul(sx, ckz)), cy = Sub(cky, Mul(sy, ckz));
+  // Edge functions; Mul then Sub, never MulSub: a fused product breaks the antisymmetry between the two
+  // triangles sharing an edge.
+  const V u = Sub(Mul(cx, by), Mul(cy, bx));
+  const V v = Sub(Mul(ax, cy), Mul(ay, cx));
+  const V w = Sub(Mul(bx, ay), Mul(by, ax));
+  const V zero = hn::Zero(d);
+  const auto zero_edge = hn::Or(hn::Or(hn::Eq(u, zero), hn::Eq(v, zero)), hn::Eq(w, zero));
+  const auto any_neg = hn::Or(hn::Or(hn::Lt(u, zero), hn::Lt(v, zero)), hn::Lt(w, zero));
+  const auto any_pos = hn::Or(hn::Or(hn::Gt(u, zero), hn::Gt(v, zero)), hn::Gt(w, zero));
+  const V det = Add(Add(u, v), w);
+  const V az = Mul(sz, akz), bz = Mul(sz, bkz), cz = Mul(sz, ckz);
+  const V t_scaled = Add(Add(Mul(u, az), Mul(v, bz)), Mul(w, cz));
+  const V inv_det = hn::Div(hn::Set(d, 1.0f), det);  // exact division, as 1.0f / det (no approximate reciprocal)
+  const V t = Mul(t_scaled, inv_det);
+  // Inside unless the edge functions have mixed signs; det != 0; 0 < t < t_max (false for NaN).
+  auto hit = hn::AndNot(hn::And(any_neg, any_pos), hn::Ne(det, zero));
+  hit = hn::And(hit, hn::And(hn::Gt(t, zero), hn::Lt(t, t_max)));
+  WatertightLanes<D> r;
+  r.zero = hn::And(candidates, zero_edge);
+  r.hit = hn::And(hn::AndNot(zero_edge, candidates), hit);
+  r.t = t;
+  r.b1 = Mul(v, inv_det);
+  r.b2 = Mul(w, inv_det);
+  return r;
+}
+
+}  // namespace torte::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // per-target guard

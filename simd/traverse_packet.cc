@@ -1,0 +1,463 @@
+// Packet traversal of WideBvh<N> + TriangleLeaves: P = 8 or 16 consecutive rays per packet, lanes = rays
+// (CappedTag<float, P>; narrower targets loop over lane groups). See traverse.h for the semantics.
+// Nodes: each child box is tested against all rays of the packet that reached the node; a child is skipped when
+// none of them hits it, and hit children are visited in order of the smallest entry distance among their rays.
+// Each stack entry carries the lanes that hit its box, so lane groups without such rays are skipped below it.
+// Leaves: one triangle at a time against all lanes, with the watertight test of traverse-inl.h.
+// Rays that are done (invalid input, padding past `count`, occluded in an any-hit query) get t_max = -inf, which
+// fails every slab and triangle test, so they never disturb the others; an any-hit packet stops when all its
+// rays are occluded.
+
+// No FMA contraction (see traverse.cc): the watertight test must round exactly like the scalar one.
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#elif defined(__GNUC__)
+#pragma GCC optimize("fp-contract=off")
+#endif
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "accel/bvh_build.h"
+#include "core/error.h"
+#include "geometry/triangle.h"
+#include "traverse.h"
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "traverse_packet.cc"  // found through the simd/ include directory of torte_core
+#include <hwy/foreach_target.h>                  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "traverse-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace torte::HWY_NAMESPACE {
+namespace {
+
+using traverse_detail::bound_offset;
+using traverse_detail::kFarRound;
+using traverse_detail::kMaxWideDepth;
+using traverse_detail::node_floats;
+
+// Per-lane state of a packet, structure of arrays so each field loads as one vector per lane group. Lane masks
+// are stored as floats that are all ones (true) or zero, and read back with MaskFromVec.
+template <size_t P>
+struct Packet {
+  alignas(64) float ox[P], oy[P], oz[P], dx[P], dy[P], dz[P];  // the rays (stand-ins in invalid lanes)
+  alignas(64) float ix[P], iy[P], iz[P];                       // slab test: 1 / direction
+  alignas(64) float neg[3][P];                                 // direction component negative (mask)
+  alignas(64) float okx[P], oky[P], okz[P];                    // origin permuted to the lane's (kx, ky, kz)
+  alignas(64) float sx[P], sy[P], sz[P];                       // shear of the watertight test
+  alignas(64) float axis_is[3][2][P];  // axis_is[k][a]: the lane's k-th permuted axis (kx, ky, kz) equals a (mask)
+  alignas(64) float t_max[P];          // shrinks to the closest hit; -inf for lanes that are done
+  alignas(64) float b1[P], b2[P];
+  alignas(64) uint32_t prim[P];
+  uint32_t valid;               // lanes holding a valid ray
+  bool same_octant, same_axes;  // over the valid lanes: one direction octant / one axis permutation
+  uint32_t near_off[3], far_off[3];  // when same_octant: plane offsets into a node, as in the single-ray kernel
+  int axes[3];                       // when same_axes: kx, ky, kz
+  Ray ray(size_t i) const { return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, t_max[i]}; }
+};
+
+// Selects per lane: m0 ? x : m1 ? y : z.
+template <class M, class V>
+HWY_INLINE V Pick(M m0, M m1, V x, V y, V z) {
+  return hn::IfThenElse(m0, x, hn::IfThenElse(m1, y, z));
+}
+
+// Loads rays [begin, begin + n) (n <= P) into the packet: validity as traverse_detail::load_ray decides it, and
+// the per-ray setup of the watertight test computed lane by lane exactly as WatertightRay's constructor does
+// (same axis choice and tie rule, same divisions), so the leaf test takes the scalar test's decisions.
+template <int N, size_t P>
+HWY_INLINE void SetupPacket(Packet<P>& p, const RaySoA& rays, size_t begin, size_t n) {
+  const hn::CappedTag<float, P> d;
+  const size_t L = hn::Lanes(d);
+  const float* src[7] = {rays.ox + begin, rays.oy + begin, rays.oz + begin, rays.dx + begin,
+                         rays.dy + begin, rays.dz + begin, rays.t_max + begin};
+  alignas(64) float tail[7][P];
+  if (n < P) {  // a partial packet: padded copies, whose padding lanes are invalid (t_max = 0)
+    for (int k = 0; k < 7; ++k) {
+      for (size_t i = 0; i < P; ++i) tail[k][i] = i < n ? src[k][i] : 0.0f;
+      src[k] = tail[k];
+    }
+  }
+  const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  p.valid = 0;
+  for (size_t g = 0; g < P; g += L) {
+    auto ox = hn::LoadU(d, src[0] + g), oy = hn::LoadU(d, src[1] + g), oz = hn::LoadU(d, src[2] + g);
+    auto dx = hn::LoadU(d, src[3] + g), dy = hn::LoadU(d, src[4] + g), dz = hn::LoadU(d, src[5] + g);
+    auto t_max = hn::LoadU(d, src[6] + g);
+    const auto finite = hn::And(hn::And(hn::And(hn::IsFinite(ox), hn::IsFinite(oy)), hn::IsFinite(oz)),
+                                hn::And(hn::And(hn::IsFinite(dx), hn::IsFinite(dy)), hn::IsFinite(dz)));
+    const auto zero_dir = hn::And(hn::And(hn::Eq(dx, zero), hn::Eq(dy, zero)), hn::Eq(dz, zero));
+    const auto valid = hn::AndNot(zero_dir, hn::And(finite, hn::Gt(t_max, zero)));
+    p.valid |= MaskBits(d, valid) << g;
+    // Invalid lanes become a harmless stand-in whose t_max = -inf keeps it out of every test.
+    ox = hn::IfThenElseZero(valid, ox), oy = hn::IfThenElseZero(valid, oy), oz = hn::IfThenElseZero(valid, oz);
+    dx = hn::IfThenElse(valid, dx, one), dy = hn::IfThenElse(valid, dy, one), dz = hn::IfThenElse(valid, dz, one);
+    t_max = hn::IfThenElse(valid, t_max, hn::Set(d, -kInfinity));
+    hn::Store(ox, d, p.ox + g), hn::Store(oy, d, p.oy + g), hn::Store(oz, d, p.oz + g);
+    hn::Store(dx, d, p.dx + g), hn::Store(dy, d, p.dy + g), hn::Store(dz, d, p.dz + g);
+    hn::Store(t_max, d, p.t_max + g);
+    const auto ix = hn::Div(one, dx), iy = hn::Div(one, dy), iz = hn::Div(one, dz);
+    hn::Store(ix, d, p.ix + g), hn::Store(iy, d, p.iy + g), hn::Store(iz, d, p.iz + g);
+    hn::Store(hn::VecFromMask(d, hn::Lt(ix, zero)), d, p.neg[0] + g);  // as SlabRay: by the sign of 1 / d
+    hn::Store(hn::VecFromMask(d, hn::Lt(iy, zero)), d, p.neg[1] + g);
+    hn::Store(hn::VecFromMask(d, hn::Lt(iz, zero)), d, p.neg[2] + g);
+    // WatertightRay: kz = max_dimension(|d|) (x > y ? (x > z ? 0 : 2) : (y > z ? 1 : 2)), kx = kz + 1,
+    // ky = kx + 1 (mod 3), kx and ky swapped when d[kz] < 0.
+    const auto ax = hn::Abs(dx), ay = hn::Abs(dy), az = hn::Abs(dz);
+    const auto x_gt_y = hn::Gt(ax, ay);
+    const auto kz0 = hn::And(x_gt_y, hn::Gt(ax, az)), kz1 = hn::AndNot(x_gt_y, hn::Gt(ay, az));
+    const auto kz2 = hn::Not(hn::Or(kz0, kz1));
+    const auto dkz = Pick(kz0, kz1, dx, dy, dz);
+    const auto flip = hn::Lt(dkz, zero);
+    const auto kx0 = hn::Or(hn::AndNot(flip, kz2), hn::And(flip, kz1));
+    const auto kx1 = hn::Or(hn::AndNot(flip, kz0), hn::And(flip, kz2));
+    const auto ky0 = hn::Or(hn::AndNot(flip, kz1), hn::And(flip, kz2));
+    const auto ky1 = hn::Or(hn::AndNot(flip, kz2), hn::And(flip, kz0));
+    hn::Store(hn::Div(Pick(kx0, kx1, dx, dy, dz), dkz), d, p.sx + g);
+    hn::Store(hn::Div(Pick(ky0, ky1, dx, dy, dz), dkz), d, p.sy + g);
+    hn::Store(hn::Div(one, dkz), d, p.sz + g);
+    hn::Store(Pick(kx0, kx1, ox, oy, oz), d, p.okx + g);
+    hn::Store(Pick(ky0, ky1, ox, oy, oz), d, p.oky + g);
+    hn::Store(Pick(kz0, kz1, ox, oy, oz), d, p.okz + g);
+    const hn::Mask<decltype(d)> axis_is[3][2] = {{kx0, kx1}, {ky0, ky1}, {kz0, kz1}};
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 2; ++a) hn::Store(hn::VecFromMask(d, axis_is[k][a]), d, p.axis_is[k][a] + g);
+    hn::Store(zero, d, p.b1 + g), hn::Store(zero, d, p.b2 + g);
+  }
+  for (size_t i = 0; i < P; ++i) p.prim[i] = kNoHit;
+  if (p.valid == 0) return;
+  // Shared octant / permutation: every valid lane agrees with the first one.
+  const int lead = __builtin_ctz(p.valid);
+  auto bit = [&](const float* mask, int i) { return std::bit_cast<uint32_t>(mask[i]) != 0; };
+  auto uniform = [&](const float* mask) {
+    bool all = true, none = true;
+    for (uint32_t v = p.valid; v != 0; v &= v - 1) {
+      const bool b = bit(mask, __builtin_ctz(v));
+      all &= b, none &= !b;
+    }
+    return all || none;
+  };
+  p.same_octant = p.same_axes = true;
+  for (int k = 0; k < 3; ++k) {
+    const bool neg = bit(p.neg[k], lead);
+    p.near_off[k] = bound_offset<N>(k, neg);
+    p.far_off[k] = bound_offset<N>(k, !neg);
+    p.axes[k] = bit(p.axis_is[k][0], lead) ? 0 : bit(p.axis_is[k][1], lead) ? 1 : 2;
+    p.same_octant &= uniform(p.neg[k]);
+    p.same_axes &= uniform(p.axis_is[k][0]) && uniform(p.axis_is[k][1]);
+  }
+}
+
+template <class D>
+HWY_INLINE uint32_t GroupMask(D d) {
+  return hn::MaxLanes(d) >= 32 ? ~0u : (1u << hn::MaxLanes(d)) - 1;
+}
+
+// Slab test of the N children of `node` against the packet's rays in `lanes`. Returns the hit children as bits;
+// child_lanes[c] gets the lanes hitting child c and t_near[c] the smallest entry distance among them.
+template <int N, size_t P>
+HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, uint32_t lanes,
+                                   uint32_t* child_lanes, float* t_near) {
+  const hn::CappedTag<float, P> d;
+  const size_t L = hn::Lanes(d);
+  const float* nf = node_floats(node);
+  const auto round = hn::Set(d, kFarRound);
+  const auto inf = hn::Set(d, kInfinity);
+  for (int c = 0; c < N; ++c) child_lanes[c] = 0, t_near[c] = kInfinity;
+  for (size_t g = 0; g < P; g += L) {
+    const uint32_t group_lanes = (lanes >> g) & GroupMask(d);
+    if (group_lanes == 0) continue;
+    const auto ox = hn::Load(d, p.ox + g), oy = hn::Load(d, p.oy + g), oz = hn::Load(d, p.oz + g);
+    const auto ix = hn::Load(d, p.ix + g), iy = hn::Load(d, p.iy + g), iz = hn::Load(d, p.iz + g);
+    const auto t_max = hn::Load(d, p.t_max + g);
+    const auto neg_x = hn::MaskFromVec(hn::Load(d, p.neg[0] + g));
+    const auto neg_y = hn::MaskFromVec(hn::Load(d, p.neg[1] + g));
+    const auto neg_z = hn::MaskFromVec(hn::Load(d, p.neg[2] + g));
+    for (int c = 0; c < N; ++c) {
+      if (node.child[c] == kEmptyChild) continue;
+      hn::Vec<decltype(d)> nx, ny, nz, fx, fy, fz;
+      if (p.same_octant) {  // near/far planes picked once for the packet
+        nx = hn::Set(d, nf[p.near_off[0] + c]), ny = hn::Set(d, nf[p.near_off[1] + c]);
+        nz = hn::Set(d, nf[p.near_off[2] + c]), fx = hn::Set(d, nf[p.far_off[0] + c]);
+        fy = hn::Set(d, nf[p.far_off[1] + c]), fz = hn::Set(d, nf[p.far_off[2] + c]);
+      } else {  // per lane
+        const auto lx = hn::Set(d, node.lo_x[c]), ly = hn::Set(d, node.lo_y[c]), lz = hn::Set(d, node.lo_z[c]);
+        const auto hx = hn::Set(d, node.hi_x[c]), hy = hn::Set(d, node.hi_y[c]), hz = hn::Set(d, node.hi_z[c]);
+        nx = hn::IfThenElse(neg_x, hx, lx), fx = hn::IfThenElse(neg_x, lx, hx);
+        ny = hn::IfThenElse(neg_y, hy, ly), fy = hn::IfThenElse(neg_y, ly, hy);
+        nz = hn::IfThenElse(neg_z, hz, lz), fz = hn::IfThenElse(neg_z, lz, hz);
+      }
+      // Same arithmetic as the single-ray test (and SlabRay), NaN slabs ignored by keeping the accumulator second.
+      const auto tx0 = hn::Mul(hn::Sub(nx, ox), ix), ty0 = hn::Mul(hn::Sub(ny, oy), iy);
+      const auto tz0 = hn::Mul(hn::Sub(nz, oz), iz);
+      const auto tx1 = hn::Mul(hn::Mul(hn::Sub(fx, ox), ix), round);
+      const auto ty1 = hn::Mul(hn::Mul(hn::Sub(fy, oy), iy), round);
+      const auto tz1 = hn::Mul(hn::Mul(hn::Sub(fz, oz), iz), round);
+      const auto t0 = hn::Max(tz0, hn::Max(ty0, hn::Max(tx0, hn::Zero(d))));
+      const auto t1 = hn::Min(tz1, hn::Min(ty1, hn::Min(tx1, t_max)));
+      const auto hit = hn::Le(t0, t1);
+      // A ray that missed the parent misses the child too (child boxes lie inside, rounding is monotonic);
+      // masking keeps the lane sets exact anyway.
+      const uint32_t bits = MaskBits(d, hit) & group_lanes;
+      if (bits == 0) continue;
+      child_lanes[c] |= bits << g;
+      const float t = hn::GetLane(hn::MinOfLanes(d, hn::IfThenElse(hit, t0, inf)));
+      t_near[c] = t < t_near[c] ? t : t_near[c];
+    }
+  }
+  uint32_t hit_children = 0;
+  for (int c = 0; c < N; ++c) hit_children |= (child_lanes[c] != 0 ? 1u : 0u) << c;
+  return hit_children;
+}
+
+// Lanes whose edge functions hit exactly 0 against triangle i: decided by the scalar test (in double).
+template <bool kAny, size_t P, class D>
+HWY_NOINLINE void RetestZeroLanes(D d, hn::Mask<D> zero, size_t g, const TriangleLeaves& tris, uint32_t i,
+                                  Packet<P>& p) {
+  const Vec3f p0{tris.v0x[i], tris.v0y[i], tris.v0z[i]}, p1{tris.v1x[i], tris.v1y[i], tris.v1z[i]},
+      p2{tris.v2x[i], tris.v2y[i], tris.v2z[i]};
+  for (uint32_t bits = MaskBits(d, zero); bits != 0; bits &= bits - 1) {
+    const size_t lane = g + size_t(__builtin_ctz(bits));
+    TriangleHit th;
+    if (!intersect_triangle(WatertightRay(p.ray(lane)), p.t_max[lane], p0, p1, p2, &th)) continue;
+    if constexpr (kAny) {
+      p.t_max[lane] = -kInfinity;
+    } else {
+      p.t_max[lane] = th.t;
+      p.prim[lane] = i;
+      p.b1[lane] = th.b1;
+      p.b2[lane] = th.b2;
+    }
+  }
+}
+
+// Picks per lane the coordinate of axis k of the lane's permutation: x, y or z.
+template <class D, size_t P, class V = hn::Vec<D>>
+HWY_INLINE V PermutedCoord(D d, const Packet<P>& p, int k, size_t g, float x, float y, float z) {
+  const auto is0 = hn::MaskFromVec(hn::Load(d, p.axis_is[k][0] + g));
+  const auto is1 = hn::MaskFromVec(hn::Load(d, p.axis_is[k][1] + g));
+  return hn::IfThenElse(is0, hn::Set(d, x), hn::IfThenElse(is1, hn::Set(d, y), hn::Set(d, z)));
+}
+
+// Tests leaf triangles [first, first + count) against the packet's lanes (lanes = rays, one triangle at a
+// time). Closest hit: lanes keep the closest hit (t_max shrinks). Any hit: hit lanes are retired (t_max = -inf).
+// Returns false when no lane can have been hit (the any-hit caller then skips its all-occluded check).
+template <bool kAny, size_t P>
+HWY_INLINE bool PacketLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t count, uint32_t lanes, Packet<P>& p) {
+  const hn::CappedTag<float, P> d;
+  const hn::RebindToUnsigned<decltype(d)> du;
+  const size_t L = hn::Lanes(d);
+  const auto zero = hn::Zero(d);
+  bool found = false;
+  for (uint32_t i = first; i < first + count; ++i) {
+    const float v[3][3] = {{tris.v0x[i], tris.v0y[i], tris.v0z[i]},
+                           {tris.v1x[i], tris.v1y[i], tris.v1z[i]},
+                           {tris.v2x[i], tris.v2y[i], tris.v2z[i]}};
+    for (size_t g = 0; g < P; g += L) {
+      if (((lanes >> g) & GroupMask(d)) == 0) continue;
+      const auto t_max = hn::Load(d, p.t_max + g);
+      const auto okx = hn::Load(d, p.okx + g), oky = hn::Load(d, p.oky + g), okz = hn::Load(d, p.okz + g);
+      // Vertex minus origin on the lane's permuted axes: the values the scalar test computes, so the same
+      // decisions follow. One permutation for the packet picks scalars; mixed ones select per lane.
+      hn::Vec<decltype(d)> a[3][3];
+      for (int k = 0; k < 3; ++k) {
+        if (p.same_axes) {
+          a[k][0] = hn::Sub(hn::Set(d, v[k][p.axes[0]]), okx);
+          a[k][1] = hn::Sub(hn::Set(d, v[k][p.axes[1]]), oky);
+          a[k][2] = hn::Sub(hn::Set(d, v[k][p.axes[2]]), okz);
+        } else {
+          a[k][0] = hn::Sub(PermutedCoord(d, p, 0, g, v[k][0], v[k][1], v[k][2]), okx);
+          a[k][1] = hn::Sub(PermutedCoord(d, p, 1, g, v[k][0], v[k][1], v[k][2]), oky);
+          a[k][2] = hn::Sub(PermutedCoord(d, p, 2, g, v[k][0], v[k][1], v[k][2]), okz);
+        }
+      }
+      const auto r = WatertightTest(d, a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2], a[2][0], a[2][1],
+                                    a[2][2], hn::Load(d, p.sx + g), hn::Load(d, p.sy + g), hn::Load(d, p.sz + g),
+                                    t_max, hn::Gt(t_max, zero));  // live lanes have t_max > 0
+      if (!hn::AllFalse(d, r.hit)) {
+        found = true;
+        if constexpr (kAny) {
+          hn::Store(hn::IfThenElse(r.hit, hn::Set(d, -kInfinity), t_max), d, p.t_max + g);
+        } else {
+          hn::Store(hn::IfThenElse(r.hit, r.t, t_max), d, p.t_max + g);
+          hn::Store(hn::IfThenElse(r.hit, r.b1, hn::Load(d, p.b1 + g)), d, p.b1 + g);
+          hn::Store(hn::IfThenElse(r.hit, r.b2, hn::Load(d, p.b2 + g)), d, p.b2 + g);
+          const auto prim = hn::Load(du, p.prim + g);
+          hn::Store(hn::IfThenElse(hn::RebindMask(du, r.hit), hn::Set(du, i), prim), du, p.prim + g);
+        }
+      }
+      if (HWY_UNLIKELY(!hn::AllFalse(d, r.zero))) {
+        RetestZeroLanes<kAny>(d, r.zero, g, tris, i, p);
+        found = true;  // maybe a hit: the caller re-checks the lanes
+      }
+    }
+  }
+  return found;
+}
+
+// Lanes still live (t_max > 0) among `lanes`.
+template <size_t P>
+HWY_INLINE uint32_t LiveLanes(const Packet<P>& p, uint32_t lanes) {
+  const hn::CappedTag<float, P> d;
+  const size_t L = hn::Lanes(d);
+  uint32_t live = 0;
+  for (size_t g = 0; g < P; g += L) live |= MaskBits(d, hn::Gt(hn::Load(d, p.t_max + g), hn::Zero(d))) << g;
+  return live & lanes;
+}
+
+// Lanes among `lanes` whose closest hit so far is not nearer than t.
+template <size_t P>
+HWY_INLINE uint32_t LanesReaching(const Packet<P>& p, uint32_t lanes, float t) {
+  const hn::CappedTag<float, P> d;
+  const size_t L = hn::Lanes(d);
+  uint32_t keep = 0;
+  for (size_t g = 0; g < P; g += L) keep |= MaskBits(d, hn::Le(hn::Set(d, t), hn::Load(d, p.t_max + g))) << g;
+  return keep & lanes;
+}
+
+template <int N, size_t P, bool kAny>
+void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p) {
+  struct Entry {
+    uint32_t ref, count, lanes;
+    float t_near;
+  };
+  Entry stack[kMaxWideDepth * (N - 1) + 1];
+  int sp = 0;
+  uint32_t ref = 0, count = 0, lanes = p.valid;  // the root is node 0
+  for (;;) {
+    if (ref & kLeafFlag) {
+      // Any hit: stop once every ray is occluded.
+      if (PacketLeaf<kAny>(tris, ref & ~kLeafFlag, count, lanes, p) && kAny && LiveLanes(p, p.valid) == 0) return;
+    } else {
+      const WideNode<N>& node = bvh.nodes[ref];
+      uint32_t child_lanes[N];
+      float t_near[N];
+      uint32_t bits = PacketChildren(node, p, lanes, child_lanes, t_near);
+      if (bits != 0) {
+        // Hit children far to near (insertion sort; no ordering needed for any hit, but it costs little).
+        uint32_t order[N];
+        int n = 0;
+        for (; bits != 0; bits &= bits - 1) {
+          const uint32_t c = uint32_t(__builtin_ctz(bits));
+          int j = n++;
+          for (; j > 0 && t_near[order[j - 1]] < t_near[c]; --j) order[j] = order[j - 1];
+          order[j] = c;
+        }
+        for (int k = 0; k < n - 1; ++k) {
+          const uint32_t c = order[k];
+          stack[sp++] = {node.child[c], node.leaf_count[c], child_lanes[c], t_near[c]};
+        }
+        const uint32_t c = order[n - 1];
+        ref = node.child[c], count = node.leaf_count[c], lanes = child_lanes[c];
+        continue;
+      }
+    }
+    // Pop the next entry that still matters: for any hit, one with an unoccluded lane; for closest hit, one
+    // whose entry distance some of its lanes' closest hit so far has not passed.
+    for (;;) {
+      if (sp == 0) return;
+      const Entry& e = stack[--sp];
+      uint32_t keep;
+      if constexpr (kAny) {
+        keep = LiveLanes(p, e.lanes);
+      } else {
+        keep = LanesReaching(p, e.lanes, e.t_near);
+      }
+      if (keep != 0) {
+        ref = e.ref, count = e.count, lanes = keep;
+        break;
+      }
+    }
+  }
+}
+
+template <int N, size_t P>
+void ClosestPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
+                    Hit* hits) {
+  Packet<P> p;
+  for (size_t begin = 0; begin < count; begin += P) {
+    const size_t n = count - begin < P ? count - begin : P;
+    SetupPacket<N>(p, rays, begin, n);
+    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, false>(bvh, tris, p);
+    for (size_t i = 0; i < n; ++i)
+      hits[begin + i] = p.prim[i] == kNoHit ? Hit{} : Hit{p.t_max[i], p.prim[i], p.b1[i], p.b2[i]};
+  }
+}
+
+template <int N, size_t P>
+void AnyPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
+                uint8_t* occluded) {
+  Packet<P> p;
+  for (size_t begin = 0; begin < count; begin += P) {
+    const size_t n = count - begin < P ? count - begin : P;
+    SetupPacket<N>(p, rays, begin, n);
+    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, true>(bvh, tris, p);
+    // Occluded lanes were retired with t_max = -inf; invalid ones never were valid.
+    for (size_t i = 0; i < n; ++i) occluded[begin + i] = ((p.valid >> i) & 1) && !(p.t_max[i] > 0) ? 1 : 0;
+  }
+}
+
+}  // namespace
+
+// Exported per target; packet_size is 8 or 16 (checked by the callers below).
+void ClosestPackets4(const WideBvh<4>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, Hit* h, int ps) {
+  ps == 16 ? ClosestPackets<4, 16>(b, t, r, n, h) : ClosestPackets<4, 8>(b, t, r, n, h);
+}
+void ClosestPackets8(const WideBvh<8>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, Hit* h, int ps) {
+  ps == 16 ? ClosestPackets<8, 16>(b, t, r, n, h) : ClosestPackets<8, 8>(b, t, r, n, h);
+}
+void AnyPackets4(const WideBvh<4>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, uint8_t* o, int ps) {
+  ps == 16 ? AnyPackets<4, 16>(b, t, r, n, o) : AnyPackets<4, 8>(b, t, r, n, o);
+}
+void AnyPackets8(const WideBvh<8>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, uint8_t* o, int ps) {
+  ps == 16 ? AnyPackets<8, 16>(b, t, r, n, o) : AnyPackets<8, 8>(b, t, r, n, o);
+}
+
+}  // namespace torte::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace torte {
+
+static_assert(kMaxBvhDepth <= traverse_detail::kMaxWideDepth, "traversal stacks are sized for the builder's depth");
+
+HWY_EXPORT(ClosestPackets4);
+HWY_EXPORT(ClosestPackets8);
+HWY_EXPORT(AnyPackets4);
+HWY_EXPORT(AnyPackets8);
+
+namespace {
+void check_packet_size(int packet_size) {
+  if (packet_size != 8 && packet_size != 16)
+    throw Error("Ray packets hold 8 or 16 rays, not " + std::to_string(packet_size) + ".");
+}
+}  // namespace
+
+void intersect_closest_packets(const WideBvh<4>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
+                               Hit* hits, int packet_size) {
+  check_packet_size(packet_size);
+  HWY_DYNAMIC_DISPATCH(ClosestPackets4)(bvh, tris, rays, count, hits, packet_size);
+}
+void intersect_closest_packets(const WideBvh<8>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
+                               Hit* hits, int packet_size) {
+  check_packet_size(packet_size);
+  HWY_DYNAMIC_DISPATCH(ClosestPackets8)(bvh, tris, rays, count, hits, packet_size);
+}
+void intersect_any_packets(const WideBvh<4>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
+                           uint8_t* occluded, int packet_size) {
+  check_packet_size(packet_size);
+  HWY_DYNAMIC_DISPATCH(AnyPackets4)(bvh, tris, rays, count, occluded, packet_size);
+}
+void intersect_any_packets(const WideBvh<8>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
+                           uint8_t* occluded, int packet_size) {
+  check_packet_size(packet_size);
+  HWY_DYNAMIC_DISPATCH(AnyPackets8)(bvh, tris, rays, count, occluded, packet_size);
+}
+
+}  // namespace torte
+#endif  // HWY_ONCE
