@@ -56,15 +56,38 @@ void WavefrontRenderer::generate_camera_rays(const std::vector<SampleRequest>& r
   }
 }
 
-void WavefrontRenderer::trace(RenderStats& stats) {
-  for (const uint32_t i : active_) {
-    Ray ray{paths_.origin[i], paths_.dir[i], kInfinity};
-    Hit hit;
-    scene_.intersect(ray, &hit);
-    paths_.hit[i] = hit;
+template <class RayOf>
+RaySoA WavefrontRenderer::gather_rays(size_t count, RayOf&& ray_of) {
+  for (auto& b : ray_buf_) b.resize(count);
+  for (size_t k = 0; k < count; ++k) {
+    const Ray r = ray_of(k);
+    ray_buf_[0][k] = r.o.x;
+    ray_buf_[1][k] = r.o.y;
+    ray_buf_[2][k] = r.o.z;
+    ray_buf_[3][k] = r.d.x;
+    ray_buf_[4][k] = r.d.y;
+    ray_buf_[5][k] = r.d.z;
+    ray_buf_[6][k] = r.t_max;
   }
+  return {ray_buf_[0].data(), ray_buf_[1].data(), ray_buf_[2].data(), ray_buf_[3].data(),
+          ray_buf_[4].data(), ray_buf_[5].data(), ray_buf_[6].data()};
+}
+
+void WavefrontRenderer::trace(RenderStats& stats) {
+  const size_t n = active_.size();
+  if (n == 0) return;
+  const RaySoA rays = gather_rays(n, [&](size_t k) {
+    const uint32_t i = active_[k];
+    return Ray{paths_.origin[i], paths_.dir[i], kInfinity};
+  });
+  hit_buf_.resize(n);
+  // Camera rays of a tile come pixel by pixel, neighbours next to each other: trace them as packets. Bounced
+  // rays are incoherent and go one at a time.
+  const bool camera_rays = paths_.depth[active_[0]] == 0;
+  scene_.intersect(rays, n, hit_buf_.data(), camera_rays);
+  for (size_t k = 0; k < n; ++k) paths_.hit[active_[k]] = hit_buf_[k];
   // Camera rays were counted when generated; everything traced after the first segment is an extension ray.
-  if (!active_.empty() && paths_.depth[active_[0]] > 0) stats.extension_rays += active_.size();
+  if (!camera_rays) stats.extension_rays += n;
 }
 
 void WavefrontRenderer::add_emission_and_queue(RenderStats&) {
@@ -135,11 +158,16 @@ void WavefrontRenderer::shade() {
 }
 
 void WavefrontRenderer::trace_shadows(RenderStats& stats) {
-  for (size_t k = 0; k < shadows_.size(); ++k) {
-    const Ray ray{shadows_.origin[k], shadows_.dir[k], shadows_.t_max[k]};
-    if (!scene_.occluded(ray)) paths_.radiance[shadows_.path[k]] += shadows_.contribution[k];
-  }
-  stats.shadow_rays += shadows_.size();
+  const size_t n = shadows_.size();
+  if (n == 0) return;
+  const RaySoA rays = gather_rays(n, [&](size_t k) {
+    return Ray{shadows_.origin[k], shadows_.dir[k], shadows_.t_max[k]};
+  });
+  occluded_buf_.resize(n);
+  scene_.occluded(rays, n, occluded_buf_.data(), false);
+  for (size_t k = 0; k < n; ++k)
+    if (!occluded_buf_[k]) paths_.radiance[shadows_.path[k]] += shadows_.contribution[k];
+  stats.shadow_rays += n;
 }
 
 void WavefrontRenderer::compact() {

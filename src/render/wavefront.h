@@ -44,7 +44,13 @@ class WavefrontRenderer {
   int max_depth_ = 0;
   PathState paths_;
   ShadowQueue shadows_;
+  // Gathers the rays of `paths` (indices into paths_ or, for shadows, the shadow queue) into SoA arrays.
+  template <class RayOf>
+  RaySoA gather_rays(size_t count, RayOf&& ray_of);
   std::vector<uint32_t> active_;                   // paths still going
+  std::vector<float> ray_buf_[7];                  // ox, oy, oz, dx, dy, dz, t_max for the trace kernels
+  std::vector<Hit> hit_buf_;
+  std::vector<uint8_t> occluded_buf_;
   std::vector<uint32_t> material_queue_;           // active hits sorted by material type
   uint32_t queue_begin_[kMaterialTypeCount + 1] = {};
 };

@@ -1,9 +1,12 @@
 #include "scene/scene.h"
 
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 
 #include "core/error.h"
 #include "geometry/triangle.h"
+#include "traverse.h"
 
 namespace torte {
 
@@ -16,20 +19,25 @@ void Scene::finalize() {
     mesh_first_.push_back(uint32_t(tri_mesh_.size()));
     tri_mesh_.insert(tri_mesh_.end(), meshes[m].triangle_count(), m);
   }
-  // World-space vertices of every triangle in one array: the trace loop reads 36 contiguous bytes per test
-  // instead of chasing mesh -> index -> position (the wide BVH will keep its own SoA leaf copy instead).
-  tri_vertices_.resize(size_t(triangle_count()) * 3);
-  for (uint32_t m = 0; m < meshes.size(); ++m)
-    for (size_t t = 0; t < meshes[m].triangle_count(); ++t)
-      for (int k = 0; k < 3; ++k)
-        tri_vertices_[3 * (mesh_first_[m] + t) + k] = meshes[m].position(meshes[m].indices[3 * t + k]);
-  std::vector<Bounds3f> bounds(primitive_count());
-  for (uint32_t m = 0; m < meshes.size(); ++m)
-    for (size_t t = 0; t < meshes[m].triangle_count(); ++t) bounds[mesh_first_[m] + t] = meshes[m].triangle_bounds(t);
-  for (size_t q = 0; q < quadrics.size(); ++q) bounds[triangle_count() + q] = world_bounds(quadrics[q]);
-  bvh_.build(bounds);
+  // Triangles: world-space vertices per global triangle, bounds, the wide BVH and its leaf-order vertex copy.
+  std::vector<Vec3f> vertices(size_t(triangle_count()) * 3);
+  std::vector<Bounds3f> tri_bounds(triangle_count());
+  tbb::parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
+    const TriangleMesh& mesh = meshes[m];
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+      const size_t g = mesh_first_[m] + t;
+      for (int k = 0; k < 3; ++k) vertices[3 * g + k] = mesh.position(mesh.indices[3 * t + k]);
+      tri_bounds[g] = mesh.triangle_bounds(t);
+    }
+  });
+  tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds);
+  tri_leaves_ = make_triangle_leaves(tri_bvh_.prim_indices, vertices);
+  std::vector<Bounds3f> quadric_bounds(quadrics.size());
+  for (size_t q = 0; q < quadrics.size(); ++q) quadric_bounds[q] = world_bounds(quadrics[q]);
+  quadric_bvh_.build(quadric_bounds);
+  bounds_ = merge(tri_bvh_.bounds, quadric_bvh_.bounds());
 
-  const Bounds3f b = bvh_.bounds();
+  const Bounds3f b = bounds_;
   center_ = b.empty() ? Vec3f{} : b.center();
   radius_ = b.empty() ? 1.0f : std::max(1e-3f, 0.5f * length(b.diagonal()));
 
@@ -53,48 +61,91 @@ void Scene::finalize() {
   light_selection = lights.empty() ? Distribution1D() : Distribution1D(power);
 }
 
-void Scene::triangle_vertices(uint32_t prim, Vec3f* p0, Vec3f* p1, Vec3f* p2) const {
-  const Vec3f* v = &tri_vertices_[3 * size_t(prim)];
-  *p0 = v[0];
-  *p1 = v[1];
-  *p2 = v[2];
-}
+namespace {
+
+// A one-ray RaySoA view of a Ray.
+struct SingleRay {
+  float v[7];
+  explicit SingleRay(const Ray& r) : v{r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.t_max} {}
+  RaySoA soa() const { return {&v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6]}; }
+};
+
+}  // namespace
 
 bool Scene::intersect(Ray& ray, Hit* hit) const {
-  const uint32_t ntri = triangle_count();
-  const WatertightRay wr(ray);
-  return bvh_.intersect(ray, [&](uint32_t prim, Ray& r) {
-    if (prim < ntri) {
-      Vec3f p0, p1, p2;
-      triangle_vertices(prim, &p0, &p1, &p2);
-      TriangleHit th;
-      if (!intersect_triangle(wr, r.t_max, p0, p1, p2, &th)) return false;
-      r.t_max = th.t;
-      *hit = {th.t, prim, th.b1, th.b2};
-      return true;
-    }
-    float t;
-    Vec2f uv;
-    if (!torte::intersect(quadrics[prim - ntri], r, &t, &uv)) return false;
-    r.t_max = t;
-    *hit = {t, prim, uv.x, uv.y};
-    return true;
-  });
+  const SingleRay one(ray);
+  Hit h;
+  intersect(one.soa(), 1, &h, false);
+  if (h.prim == kNoHit) return false;
+  *hit = h;
+  ray.t_max = h.t;
+  return true;
 }
 
 bool Scene::occluded(const Ray& ray) const {
-  const uint32_t ntri = triangle_count();
-  const WatertightRay wr(ray);
-  return bvh_.occluded(ray, [&](uint32_t prim, const Ray& r) {
-    if (prim < ntri) {
-      Vec3f p0, p1, p2;
-      triangle_vertices(prim, &p0, &p1, &p2);
-      return intersect_triangle(wr, r.t_max, p0, p1, p2, nullptr);
+  const SingleRay one(ray);
+  uint8_t blocked = 0;
+  occluded(one.soa(), 1, &blocked, false);
+  return blocked != 0;
+}
+
+void Scene::intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
+  if (triangle_count() > 0) {
+    if (coherent) {
+      intersect_closest_packets(tri_bvh_, tri_leaves_, rays, count, hits, 8);
+    } else {
+      intersect_closest(tri_bvh_, tri_leaves_, rays, count, hits);
     }
-    float t;
-    Vec2f uv;
-    return torte::intersect(quadrics[prim - ntri], r, &t, &uv);
-  });
+    // The kernels report leaf order; the rest of the renderer numbers triangles globally.
+    for (size_t i = 0; i < count; ++i)
+      if (hits[i].prim != kNoHit) hits[i].prim = tri_bvh_.prim_indices[hits[i].prim];
+  } else {
+    std::fill(hits, hits + count, Hit{});
+  }
+  if (!quadrics.empty()) intersect_quadrics(rays, count, hits);
+}
+
+void Scene::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const {
+  const uint32_t ntri = triangle_count();
+  for (size_t i = 0; i < count; ++i) {
+    Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, std::min(rays.t_max[i], hits[i].t)};
+    if (!(r.t_max > 0)) continue;
+    quadric_bvh_.intersect(r, [&](uint32_t q, Ray& ray) {
+      float t;
+      Vec2f uv;
+      if (!torte::intersect(quadrics[q], ray, &t, &uv)) return false;
+      ray.t_max = t;
+      hits[i] = {t, ntri + q, uv.x, uv.y};
+      return true;
+    });
+  }
+}
+
+void Scene::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const {
+  if (triangle_count() > 0) {
+    if (coherent) {
+      intersect_any_packets(tri_bvh_, tri_leaves_, rays, count, blocked, 8);
+    } else {
+      intersect_any(tri_bvh_, tri_leaves_, rays, count, blocked);
+    }
+  } else {
+    std::fill(blocked, blocked + count, uint8_t(0));
+  }
+  if (quadrics.empty()) return;
+  for (size_t i = 0; i < count; ++i) {
+    if (blocked[i]) continue;
+    const Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
+    blocked[i] = quadric_bvh_.occluded(r, [&](uint32_t q, const Ray& ray) {
+      float t;
+      Vec2f uv;
+      return torte::intersect(quadrics[q], ray, &t, &uv);
+    });
+  }
+}
+
+size_t Scene::accel_bytes() const {
+  return tri_bvh_.memory_bytes() + tri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
+         quadric_bvh_.prim_indices().size() * sizeof(uint32_t);
 }
 
 SurfaceHit Scene::surface(const Ray& ray, const Hit& hit) const {

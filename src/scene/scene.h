@@ -5,7 +5,9 @@
 #include <vector>
 
 #include "accel/bvh2.h"
+#include "accel/bvh_build.h"
 #include "accel/hit.h"
+#include "accel/wide_bvh.h"
 #include "camera/camera.h"
 #include "core/sampling.h"
 #include "geometry/mesh.h"
@@ -52,22 +54,33 @@ class Scene {
   uint32_t object_of(uint32_t prim) const {
     return prim < triangle_count() ? tri_mesh_[prim] : uint32_t(meshes.size()) + (prim - triangle_count());
   }
-  Bounds3f bounds() const { return bvh_.bounds(); }
+  Bounds3f bounds() const { return bounds_; }
   // Bounding sphere of the scene (for infinite lights).
   Vec3f center() const { return center_; }
   float radius() const { return radius_; }
 
+  // One ray (tests, light tools). The renderer traces whole batches with the functions below.
   bool intersect(Ray& ray, Hit* hit) const;
   bool occluded(const Ray& ray) const;
+  // Batches: `coherent` rays (neighbours in groups of 8, such as a tile's camera rays) go through the packet
+  // kernels, others one ray at a time through the SIMD single-ray kernels.
+  void intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const;
+  void occluded(const RaySoA& rays, size_t count, uint8_t* occluded, bool coherent) const;
   SurfaceHit surface(const Ray& ray, const Hit& hit) const;
-  const Bvh2& bvh() const { return bvh_; }
+  // Bytes of acceleration data (wide BVH nodes, leaf triangles, index map, quadric BVH).
+  size_t accel_bytes() const;
 
  private:
-  void triangle_vertices(uint32_t prim, Vec3f* p0, Vec3f* p1, Vec3f* p2) const;
+  // Adds quadric hits to hits already holding the closest triangle hit (or a miss).
+  void intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const;
   std::vector<uint32_t> tri_mesh_;   // global triangle -> mesh
   std::vector<uint32_t> mesh_first_;  // mesh -> first global triangle
-  std::vector<Vec3f> tri_vertices_;   // three world-space vertices per global triangle
-  Bvh2 bvh_;
+  // All triangles of all meshes in one wide BVH (SIMD kernels, simd/traverse.h); the few analytic shapes in a
+  // scalar BVH2 of their own, traced after it with t_max clipped to the triangle hit.
+  WideBvh<kDefaultBvhWidth> tri_bvh_;
+  TriangleLeaves tri_leaves_;
+  Bvh2 quadric_bvh_;
+  Bounds3f bounds_;
   Vec3f center_;
   float radius_ = 0;
 };
