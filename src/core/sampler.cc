@@ -45,12 +45,13 @@ struct Seeds {
 };
 
 Seeds derive_seeds(uint64_t seed_hash, uint32_t pixel, uint32_t dimension) {
-  // Hash the pixel/dimension key first, then combine with the seed and hash again, so that nearby keys and
-  // nearby seeds both give unrelated scrambles.
+  // One 64-bit finalizer over (pixel, dimension) xor the pre-hashed seed gives two independent 32-bit seeds; a
+  // multiply by an odd constant (a bijection of the 64-bit hash) gives the third. Nearby keys and nearby seeds
+  // both end up unrelated because mix_bits avalanches every input bit.
   const uint64_t key = (uint64_t(pixel) << 32) | dimension;
-  const uint64_t h = mix_bits(mix_bits(key) ^ seed_hash);
-  const uint64_t h2 = mix_bits(h ^ 0xd1b54a32d192ed03ULL);
-  return {uint32_t(h), uint32_t(h >> 32), uint32_t(h2)};
+  const uint64_t h = mix_bits(key ^ seed_hash);
+  const uint64_t h2 = h * 0x9e3779b97f4a7c15ULL;
+  return {uint32_t(h), uint32_t(h >> 32), uint32_t(h2 >> 32)};
 }
 
 }  // namespace
