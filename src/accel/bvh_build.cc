@@ -8,9 +8,12 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
+#include <emmintrin.h>
+
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <memory>
 #include <cmath>
 #include <string>
 
@@ -41,34 +44,52 @@ struct PrimRef {
 };
 inline Vec3f centroid(const PrimRef& r) { return (r.bounds.lo + r.bounds.hi) * 0.5f; }
 
-// One bin, 28 bytes: the bounds of the primitives whose centroids fall in it, and their count. Plain floats
-// (no member initialisers) so declaring a BinSet costs nothing: reset() initialises only the bins in use, which
-// matters because most nodes are small (initialising all 192 bins cost ~2 GB of stores for 1M triangles).
-struct Bin {
-  float lo[3], hi[3];
-  uint32_t count;
-  void extend(const Bounds3f& b) {
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], b.lo[a]);
-      hi[a] = std::max(hi[a], b.hi[a]);
-    }
+// SSE2 helpers over a bounds' corners: lanes x, y, z and one ignored lane. Min/max are exact, so the vector
+// code gives bit for bit the bounds, bins and costs of the scalar code it replaced (same tree, same SAH).
+// A PrimRef's lo load reads lo.xyz + hi.x, its hi load hi.xyz + prim (both inside the 28-byte ref).
+inline __m128 load_lo(const PrimRef& r) { return _mm_loadu_ps(&r.bounds.lo.x); }
+inline __m128 load_hi(const PrimRef& r) { return _mm_loadu_ps(&r.bounds.hi.x); }
+inline __m128 centroid4(__m128 lo, __m128 hi) { return _mm_mul_ps(_mm_add_ps(lo, hi), _mm_set1_ps(0.5f)); }
+inline Vec3f to_vec(__m128 v) {
+  alignas(16) float f[4];
+  _mm_store_ps(f, v);
+  return {f[0], f[1], f[2]};
+}
+inline __m128 to_m128(Vec3f v) { return _mm_setr_ps(v.x, v.y, v.z, 0.0f); }
+
+// Running bounds as two vectors. No member initialisers (a BinSet initialises only the bins in use): start from
+// Box4::empty().
+struct Box4 {
+  __m128 lo, hi;
+  static Box4 empty() { return {_mm_set1_ps(kInfinity), _mm_set1_ps(-kInfinity)}; }
+  void extend(__m128 l, __m128 h) {
+    lo = _mm_min_ps(lo, l);
+    hi = _mm_max_ps(hi, h);
   }
-  Bounds3f bounds() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+  void extend(const Box4& b) { extend(b.lo, b.hi); }
+  Bounds3f bounds() const { return {to_vec(lo), to_vec(hi)}; }
 };
 
-// Per-axis bins of one node: 3 * 64 * 28 = 5376 bytes (only options.bins per axis are used).
+// Per-axis bins of one node: 3 * 64 * (32 + 4) = 6912 bytes (only options.bins per axis are used, and only
+// those are initialised: most nodes are small, and initialising all 192 bins cost ~2 GB of stores for 1M
+// triangles). Lane 3 of a bin's box holds garbage and is never read.
 struct BinSet {
-  Bin bin[3][kMaxBins];
+  Box4 box[3][kMaxBins];
+  uint32_t count[3][kMaxBins];
   explicit BinSet(int nbins) {
-    constexpr float inf = kInfinity;
     for (int a = 0; a < 3; ++a)
-      for (int i = 0; i < nbins; ++i) bin[a][i] = {{inf, inf, inf}, {-inf, -inf, -inf}, 0};
+      for (int i = 0; i < nbins; ++i) {
+        box[a][i] = Box4::empty();
+        count[a][i] = 0;
+      }
   }
+  BinSet(const BinSet&) = default;
+  BinSet& operator=(const BinSet&) = default;
   void merge(const BinSet& o, int nbins) {
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < nbins; ++i) {
-        bin[a][i].extend(o.bin[a][i].bounds());
-        bin[a][i].count += o.bin[a][i].count;
+        box[a][i].extend(o.box[a][i]);
+        count[a][i] += o.count[a][i];
       }
   }
 };
@@ -114,9 +135,10 @@ class Builder {
       // initialisation and sweeps cost more than binning a few primitives, and never worse.
       const bool small = count <= kSmallNode;
       Split s;
-      if (sah && (small ? sorted_split(begin, end, rb, &s) : find_split(begin, end, rb, &s))) {
+      uint8_t order[3][kSmallNode];
+      if (sah && (small ? sorted_split(begin, end, rb, &s, order) : find_split(begin, end, rb, &s))) {
         if (!may_be_leaf || s.cost < leaf_sah_cost(count, o_)) {
-          mid = small ? apply_sorted_split(begin, end, s, &left, &right)
+          mid = small ? apply_sorted_split(begin, end, s, order[s.axis], &left, &right)
                       : partition(begin, end, rb.cb, s, &left, &right);
           // Binning and partitioning share bin_of, so both sides are non-empty; never risk an oversized leaf.
           if (mid == begin || mid == end) mid = halve(begin, end, max_dimension(extent), &left, &right);
@@ -174,26 +196,28 @@ class Builder {
   }
   int bin_of(float c, float lo, float k) const { return std::min(int((c - lo) * k), o_.bins - 1); }
 
+  // All three axes at once: an axis with k == 0 puts everything in bin 0 and is skipped by the sweep. The
+  // index is int(min((c - lo) * k, bins - 1)), which equals bin_of's min(int((c - lo) * k), bins - 1) for the
+  // non-negative products that occur (c >= lo: the centroid bounds come from the same arithmetic).
   void bin_range(uint32_t begin, uint32_t end, const Bounds3f& cb, const float k[3], BinSet& bins) const {
-    const bool all = k[0] > 0 && k[1] > 0 && k[2] > 0;
+    const __m128 clo = to_m128(cb.lo), kk = _mm_setr_ps(k[0], k[1], k[2], 0.0f);
+    const __m128 top = _mm_set1_ps(float(o_.bins - 1));
+    alignas(16) int32_t idx[4];
     for (uint32_t i = begin; i < end; ++i) {
       const PrimRef& r = refs_[i];
-      const Vec3f c = centroid(r);
-      if (all) {  // the common case, without the per-axis test
-        for (int a = 0; a < 3; ++a) {
-          Bin& b = bins.bin[a][bin_of(c[a], cb.lo[a], k[a])];
-          b.extend(r.bounds);
-          ++b.count;
-        }
-        continue;
-      }
+      const __m128 lo = load_lo(r), hi = load_hi(r);
+      const __m128 x = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(centroid4(lo, hi), clo), kk), top);
+      _mm_store_si128(reinterpret_cast<__m128i*>(idx), _mm_cvttps_epi32(x));
       for (int a = 0; a < 3; ++a) {
-        if (k[a] == 0) continue;
-        Bin& b = bins.bin[a][bin_of(c[a], cb.lo[a], k[a])];
-        b.extend(r.bounds);
-        ++b.count;
+        bins.box[a][idx[a]].extend(lo, hi);
+        ++bins.count[a][idx[a]];
       }
     }
+  }
+  static float half_area(__m128 lo, __m128 hi) {
+    alignas(16) float d[4];
+    _mm_store_ps(d, _mm_sub_ps(hi, lo));
+    return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
   }
 
   // Best binned SAH split over the three axes; false if no plane leaves primitives on both sides. Not inlined:
@@ -226,23 +250,24 @@ class Builder {
     bool found = false;
     for (int a = 0; a < 3; ++a) {
       if (k[a] == 0) continue;
-      const Bin* b = bins.bin[a];
+      const Box4* b = bins.box[a];
+      const uint32_t* bc = bins.count[a];
       // Sweep from the right to record the area of everything right of each plane, then from the left.
-      Bounds3f r;
+      Box4 r = Box4::empty();
       uint32_t rc = 0;
       for (int i = nbins - 1; i > 0; --i) {
-        r.extend(b[i].bounds());
-        rc += b[i].count;
-        right_area[i] = half_area(r);
+        r.extend(b[i]);
+        rc += bc[i];
+        right_area[i] = half_area(r.lo, r.hi);
         right_count[i] = rc;
       }
-      Bounds3f l;
+      Box4 l = Box4::empty();
       uint32_t lc = 0;
       for (int i = 0; i < nbins - 1; ++i) {
-        l.extend(b[i].bounds());
-        lc += b[i].count;
+        l.extend(b[i]);
+        lc += bc[i];
         if (lc == 0 || lc == total) continue;
-        const float children = half_area(l) * blocks(lc) + right_area[i + 1] * blocks(right_count[i + 1]);
+        const float children = half_area(l.lo, l.hi) * blocks(lc) + right_area[i + 1] * blocks(right_count[i + 1]);
         const float cost = o_.traversal_cost + o_.intersection_cost * children * inv_area;
         if (!found || cost < best->cost) {
           best->axis = a;
@@ -253,9 +278,10 @@ class Builder {
       }
     }
     if (!found) return false;
-    best->left = best->right = Bounds3f{};
-    for (int i = 0; i < nbins; ++i)
-      (i <= best->bin ? best->left : best->right).extend(bins.bin[best->axis][i].bounds());
+    Box4 l = Box4::empty(), r = Box4::empty();
+    for (int i = 0; i < nbins; ++i) (i <= best->bin ? l : r).extend(bins.box[best->axis][i]);
+    best->left = l.bounds();
+    best->right = r.bounds();
     return true;
   }
 
@@ -271,26 +297,36 @@ class Builder {
   }
 
   // Exact SAH over every position of the centroids sorted along each axis (count <= kSmallNode).
-  bool sorted_split(uint32_t begin, uint32_t end, const RangeBounds& rb, Split* best) const {
+  // `order` receives the sorted order per axis, for apply_sorted_split.
+  bool sorted_split(uint32_t begin, uint32_t end, const RangeBounds& rb, Split* best,
+                    uint8_t (*order_by_axis)[kSmallNode]) const {
     const uint32_t n = end - begin;
     const Vec3f extent = rb.cb.diagonal();
     const float inv_area = 1 / half_area(rb.nb);
+    // The range's boxes and centroids, loaded once for the three axes.
+    __m128 blo[kSmallNode], bhi[kSmallNode];
+    alignas(16) float cen[kSmallNode][4];
+    for (uint32_t i = 0; i < n; ++i) {
+      blo[i] = load_lo(refs_[begin + i]);
+      bhi[i] = load_hi(refs_[begin + i]);
+      _mm_store_ps(cen[i], centroid4(blo[i], bhi[i]));
+    }
     bool found = false;
     for (int a = 0; a < 3; ++a) {
       if (!(extent[a] > 0)) continue;
       float key[kSmallNode], right_area[kSmallNode];
-      uint8_t order[kSmallNode];
-      for (uint32_t i = 0; i < n; ++i) key[i] = centroid(refs_[begin + i])[a];
+      uint8_t* order = order_by_axis[a];
+      for (uint32_t i = 0; i < n; ++i) key[i] = cen[i][a];
       sort_small(order, key, n);
-      Bounds3f r;
+      Box4 r = Box4::empty();
       for (uint32_t i = n - 1; i > 0; --i) {
-        r.extend(refs_[begin + order[i]].bounds);
-        right_area[i] = half_area(r);
+        r.extend(blo[order[i]], bhi[order[i]]);
+        right_area[i] = half_area(r.lo, r.hi);
       }
-      Bounds3f l;
+      Box4 l = Box4::empty();
       for (uint32_t i = 0; i + 1 < n; ++i) {
-        l.extend(refs_[begin + order[i]].bounds);
-        const float children = half_area(l) * blocks(i + 1) + right_area[i + 1] * blocks(n - i - 1);
+        l.extend(blo[order[i]], bhi[order[i]]);
+        const float children = half_area(l.lo, l.hi) * blocks(i + 1) + right_area[i + 1] * blocks(n - i - 1);
         const float cost = o_.traversal_cost + o_.intersection_cost * children * inv_area;
         if (!found || cost < best->cost) {
           best->axis = a;
@@ -304,16 +340,11 @@ class Builder {
   }
 
   // Reorders the range as sorted_split sorted it along the chosen axis, and splits after position s.bin.
-  uint32_t apply_sorted_split(uint32_t begin, uint32_t end, const Split& s, RangeBounds* left, RangeBounds* right) {
+  uint32_t apply_sorted_split(uint32_t begin, uint32_t end, const Split& s, const uint8_t* order, RangeBounds* left,
+                              RangeBounds* right) {
     const uint32_t n = end - begin;
-    float key[kSmallNode];
-    uint8_t order[kSmallNode];
     PrimRef copy[kSmallNode];
-    for (uint32_t i = 0; i < n; ++i) {
-      copy[i] = refs_[begin + i];
-      key[i] = centroid(copy[i])[s.axis];
-    }
-    sort_small(order, key, n);
+    for (uint32_t i = 0; i < n; ++i) copy[i] = refs_[begin + i];
     for (uint32_t i = 0; i < n; ++i) refs_[begin + i] = copy[order[i]];
     const uint32_t mid = begin + uint32_t(s.bin) + 1;
     *left = range_bounds(begin, mid);
@@ -332,15 +363,22 @@ class Builder {
     auto goes_left = [&](const PrimRef& r) {
       return bin_of((r.bounds.lo[a] + r.bounds.hi[a]) * 0.5f, lo, k) <= s.bin;
     };
+    Box4 lc = Box4::empty(), rc = Box4::empty();
+    auto add = [](Box4& box, const PrimRef& r) {
+      const __m128 c = centroid4(load_lo(r), load_hi(r));
+      box.extend(c, c);
+    };
     uint32_t i = begin, j = end;
     for (;;) {
-      while (i < j && goes_left(refs_[i])) left->cb.extend(centroid(refs_[i++]));
-      while (i < j && !goes_left(refs_[j - 1])) right->cb.extend(centroid(refs_[--j]));
+      while (i < j && goes_left(refs_[i])) add(lc, refs_[i++]);
+      while (i < j && !goes_left(refs_[j - 1])) add(rc, refs_[--j]);
       if (i >= j) break;
       std::swap(refs_[i], refs_[j - 1]);
-      left->cb.extend(centroid(refs_[i++]));
-      right->cb.extend(centroid(refs_[--j]));
+      add(lc, refs_[i++]);
+      add(rc, refs_[--j]);
     }
+    left->cb = lc.bounds();
+    right->cb = rc.bounds();
     left->nb = s.left;
     right->nb = s.right;
     return i;
@@ -360,7 +398,14 @@ class Builder {
 
   RangeBounds range_bounds(uint32_t begin, uint32_t end) const {
     auto serial = [&](uint32_t b, uint32_t e, RangeBounds acc) {
-      for (uint32_t i = b; i < e; ++i) acc.extend(refs_[i]);
+      Box4 nb = Box4::empty(), cb = Box4::empty();
+      for (uint32_t i = b; i < e; ++i) {
+        const __m128 lo = load_lo(refs_[i]), hi = load_hi(refs_[i]), c = centroid4(lo, hi);
+        nb.extend(lo, hi);
+        cb.extend(c, c);
+      }
+      acc.nb.extend(nb.bounds());
+      acc.cb.extend(cb.bounds());
       return acc;
     };
     if (!o_.parallel || end - begin < kParallelBinMin) return serial(begin, end, {});
@@ -455,11 +500,22 @@ BinaryBvh build_binary_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuild
   RangeBounds root;
   std::vector<PrimRef> refs = make_refs(prim_bounds, options.parallel, &root);
   if (refs.empty()) return bvh;
-  bvh.nodes.resize(2 * refs.size() - 1);
-  Builder builder(options, refs, bvh.nodes.data());
+  // The builder writes into an uninitialised buffer of the 2n - 1 bound (a vector's serial zero fill of 64 bytes
+  // per primitive cost more than the copy), then the nodes used are copied out in parallel chunks.
+  const size_t max_nodes = 2 * refs.size() - 1;
+  struct FreeNodes {
+    void operator()(BinaryBvhNode* p) const { ::operator delete(p); }
+  };
+  std::unique_ptr<BinaryBvhNode, FreeNodes> scratch(
+      static_cast<BinaryBvhNode*>(::operator new(max_nodes * sizeof(BinaryBvhNode))));
+  Builder builder(options, refs, scratch.get());
   builder.build(0, 0, uint32_t(refs.size()), 0, root);
-  bvh.nodes.resize(builder.node_count());
-  bvh.nodes.shrink_to_fit();  // from the 2n - 1 bound to the nodes used
+  const size_t used = builder.node_count();
+  bvh.nodes.resize(used);
+  for_chunks(used, options.parallel, [&](size_t, size_t b, size_t e) {
+    std::copy(scratch.get() + b, scratch.get() + e, bvh.nodes.data() + b);
+  });
+  scratch.reset();
   bvh.prim_indices.resize(refs.size());
   for_chunks(refs.size(), options.parallel, [&](size_t, size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) bvh.prim_indices[i] = refs[i].prim;

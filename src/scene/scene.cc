@@ -1,5 +1,6 @@
 #include "scene/scene.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -22,13 +23,17 @@ void Scene::finalize() {
   // Triangles: world-space vertices per global triangle, bounds, the wide BVH and its leaf-order vertex copy.
   std::vector<Vec3f> vertices(size_t(triangle_count()) * 3);
   std::vector<Bounds3f> tri_bounds(triangle_count());
+  // Parallel over meshes and, nested, over each mesh's triangles: one big mesh would otherwise run serially.
   tbb::parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
     const TriangleMesh& mesh = meshes[m];
-    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-      const size_t g = mesh_first_[m] + t;
-      for (int k = 0; k < 3; ++k) vertices[3 * g + k] = mesh.position(mesh.indices[3 * t + k]);
-      tri_bounds[g] = mesh.triangle_bounds(t);
-    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangle_count(), 8192),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                        for (size_t t = r.begin(); t < r.end(); ++t) {
+                          const size_t g = mesh_first_[m] + t;
+                          for (int k = 0; k < 3; ++k) vertices[3 * g + k] = mesh.position(mesh.indices[3 * t + k]);
+                          tri_bounds[g] = mesh.triangle_bounds(t);
+                        }
+                      });
   });
   tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds);
   tri_leaves_ = make_triangle_leaves(tri_bvh_.prim_indices, vertices);
