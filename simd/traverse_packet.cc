@@ -4,6 +4,11 @@
 // none of them hits it, and hit children are visited in order of the smallest entry distance among their rays.
 // Each stack entry carries the lanes that hit its box, so lane groups without such rays are skipped below it.
 // Leaves: one triangle at a time against all lanes, with the watertight test of traverse-inl.h.
+// Any hit only: children are visited in any order (no entry distances computed); in a same-octant packet the
+// node's children are first tested against the packet's interval of origins / inverse directions (one vector test
+// for all N children, Reshetov et al. 2005) and only the survivors lane by lane; and once an entry holds few live
+// rays (kSingleThreshold) its subtree is traced one ray at a time with the single-ray kernel's tests (Benthin et
+// al. 2012).
 // Rays that are done (invalid input, padding past `count`, occluded in an any-hit query) get t_max = -inf, which
 // fails every slab and triangle test, so they never disturb the others; an any-hit packet stops when all its
 // rays are occluded.
@@ -19,6 +24,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 
 #include "accel/bvh_build.h"
 #include "core/error.h"
@@ -58,6 +64,11 @@ struct Packet {
   bool same_octant, same_axes;  // over the valid lanes: one direction octant / one axis permutation
   uint32_t near_off[3], far_off[3];  // when same_octant: plane offsets into a node, as in the single-ray kernel
   int axes[3];                       // when same_axes: kx, ky, kz
+  // Interval culling (Reshetov et al. 2005), when same_octant: bounds over the valid lanes of the origin and of
+  // 1 / direction per axis, and of t_max. Axes where some lane's 1 / direction is infinite are left out
+  // (interval_axes bit a clear), which only makes the test more conservative.
+  float o_lo[3], o_hi[3], i_lo[3], i_hi[3], t_hi;
+  uint32_t interval_axes;
   Ray ray(size_t i) const { return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, t_max[i]}; }
 };
 
@@ -70,7 +81,7 @@ HWY_INLINE V Pick(M m0, M m1, V x, V y, V z) {
 // Loads rays [begin, begin + n) (n <= P) into the packet: validity as traverse_detail::load_ray decides it, and
 // the per-ray setup of the watertight test computed lane by lane exactly as WatertightRay's constructor does
 // (same axis choice and tie rule, same divisions), so the leaf test takes the scalar test's decisions.
-template <int N, size_t P>
+template <int N, bool kIntervals, size_t P>
 HWY_INLINE void SetupPacket(Packet<P>& p, const RaySoA& rays, size_t begin, size_t n) {
   const hn::CappedTag<float, P> d;
   const size_t L = hn::Lanes(d);
@@ -151,6 +162,27 @@ HWY_INLINE void SetupPacket(Packet<P>& p, const RaySoA& rays, size_t begin, size
     p.same_octant &= uniform(p.neg[k]);
     p.same_axes &= uniform(p.axis_is[k][0]) && uniform(p.axis_is[k][1]);
   }
+  p.interval_axes = 0;
+  p.t_hi = -kInfinity;
+  if (!kIntervals || !p.same_octant) return;  // interval culling: any hit, same-octant packets only
+  const float* o[3] = {p.ox, p.oy, p.oz};
+  const float* inv[3] = {p.ix, p.iy, p.iz};
+  for (int k = 0; k < 3; ++k) {
+    float olo = kInfinity, ohi = -kInfinity, ilo = kInfinity, ihi = -kInfinity;
+    bool finite = true;
+    for (uint32_t v = p.valid; v != 0; v &= v - 1) {
+      const int i = __builtin_ctz(v);
+      olo = o[k][i] < olo ? o[k][i] : olo, ohi = o[k][i] > ohi ? o[k][i] : ohi;
+      ilo = inv[k][i] < ilo ? inv[k][i] : ilo, ihi = inv[k][i] > ihi ? inv[k][i] : ihi;
+      finite &= std::isfinite(inv[k][i]);
+    }
+    p.o_lo[k] = olo, p.o_hi[k] = ohi, p.i_lo[k] = ilo, p.i_hi[k] = ihi;
+    if (finite) p.interval_axes |= 1u << k;
+  }
+  for (uint32_t v = p.valid; v != 0; v &= v - 1) {
+    const int i = __builtin_ctz(v);
+    p.t_hi = p.t_max[i] > p.t_hi ? p.t_max[i] : p.t_hi;
+  }
 }
 
 template <class D>
@@ -158,10 +190,42 @@ HWY_INLINE uint32_t GroupMask(D d) {
   return hn::MaxLanes(d) >= 32 ? ~0u : (1u << hn::MaxLanes(d)) - 1;
 }
 
+// Children of `node` that some valid ray of a same-octant packet may hit: the slab test in interval arithmetic
+// over the packet's bounds of origin, 1 / direction and t_max. Every lane's slab distances are products of
+// correctly rounded (hence monotonic) operations, so they lie between the corner products computed here; a child
+// rejected here fails every lane's own test.
+template <int N, size_t P>
+HWY_INLINE uint32_t IntervalChildren(const WideNode<N>& node, const Packet<P>& p) {
+  const hn::CappedTag<float, N> d;
+  const size_t L = hn::Lanes(d);
+  const float* nf = node_floats(node);
+  const auto round = hn::Set(d, kFarRound);
+  uint32_t bits = 0;
+  for (size_t g = 0; g < size_t(N); g += L) {
+    auto t0 = hn::Zero(d), t1 = hn::Set(d, p.t_hi);
+    for (int k = 0; k < 3; ++k) {
+      if (!((p.interval_axes >> k) & 1)) continue;
+      const auto olo = hn::Set(d, p.o_lo[k]), ohi = hn::Set(d, p.o_hi[k]);
+      const auto ilo = hn::Set(d, p.i_lo[k]), ihi = hn::Set(d, p.i_hi[k]);
+      const auto n = hn::Load(d, nf + p.near_off[k] + g), f = hn::Load(d, nf + p.far_off[k] + g);
+      const auto n0 = hn::Sub(n, ohi), n1 = hn::Sub(n, olo);  // near plane minus origin: [n0, n1]
+      const auto f0 = hn::Sub(f, ohi), f1 = hn::Sub(f, olo);
+      const auto near_lo = hn::Min(hn::Min(hn::Mul(n0, ilo), hn::Mul(n0, ihi)),
+                                   hn::Min(hn::Mul(n1, ilo), hn::Mul(n1, ihi)));
+      const auto far_hi = hn::Mul(hn::Max(hn::Max(hn::Mul(f0, ilo), hn::Mul(f0, ihi)),
+                                          hn::Max(hn::Mul(f1, ilo), hn::Mul(f1, ihi))),
+                                  round);
+      t0 = hn::Max(t0, near_lo), t1 = hn::Min(t1, far_hi);
+    }
+    bits |= MaskBits(d, hn::Le(t0, t1)) << g;
+  }
+  return bits;
+}
+
 // Slab test of the N children of `node` against the packet's rays in `lanes`. Returns the hit children as bits;
 // child_lanes[c] gets the lanes hitting child c and t_near[c] the smallest entry distance among them.
-template <int N, size_t P>
-HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, uint32_t lanes,
+template <bool kAny, int N, size_t P>
+HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, uint32_t lanes, uint32_t cand,
                                    uint32_t* child_lanes, float* t_near) {
   const hn::CappedTag<float, P> d;
   const size_t L = hn::Lanes(d);
@@ -179,7 +243,7 @@ HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, 
     const auto neg_y = hn::MaskFromVec(hn::Load(d, p.neg[1] + g));
     const auto neg_z = hn::MaskFromVec(hn::Load(d, p.neg[2] + g));
     for (int c = 0; c < N; ++c) {
-      if (node.child[c] == kEmptyChild) continue;
+      if (node.child[c] == kEmptyChild || (kAny && !((cand >> c) & 1))) continue;
       hn::Vec<decltype(d)> nx, ny, nz, fx, fy, fz;
       if (p.same_octant) {  // near/far planes picked once for the packet
         nx = hn::Set(d, nf[p.near_off[0] + c]), ny = hn::Set(d, nf[p.near_off[1] + c]);
@@ -206,8 +270,10 @@ HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, 
       const uint32_t bits = MaskBits(d, hit) & group_lanes;
       if (bits == 0) continue;
       child_lanes[c] |= bits << g;
-      const float t = hn::GetLane(hn::MinOfLanes(d, hn::IfThenElse(hit, t0, inf)));
-      t_near[c] = t < t_near[c] ? t : t_near[c];
+      if constexpr (!kAny) {  // any hit needs no child order
+        const float t = hn::GetLane(hn::MinOfLanes(d, hn::IfThenElse(hit, t0, inf)));
+        t_near[c] = t < t_near[c] ? t : t_near[c];
+      }
     }
   }
   uint32_t hit_children = 0;
@@ -320,6 +386,128 @@ HWY_INLINE uint32_t LanesReaching(const Packet<P>& p, uint32_t lanes, float t) {
   return keep & lanes;
 }
 
+// Any hit: a packet entry with at most this many live rays is traced one ray at a time (measured on the dragon's
+// shadow rays, AVX2, wide8: 6 of 16 and 3 of 8 were best; 0 and "always single" were both ~25% slower).
+template <size_t P>
+constexpr int kSingleThreshold = P == 16 ? 6 : 3;
+
+// ---- Single-ray any-hit traversal of a subtree, for packets with few live lanes (Benthin et al. 2012) ----
+// The same tests as the single-ray kernel of traverse.cc: lanes = children in nodes, lanes = triangles in leaves.
+struct LaneRay {
+  WatertightRay wr;
+  float o[3], inv_d[3];
+  uint32_t near_off[3], far_off[3];
+  const float* verts[9];
+  template <int N>
+  LaneRay(const Ray& ray, const TriangleLeaves& tris, std::integral_constant<int, N>) : wr(ray) {
+    for (int a = 0; a < 3; ++a) {
+      o[a] = ray.o[a];
+      inv_d[a] = 1.0f / ray.d[a];
+      const bool neg = inv_d[a] < 0;
+      near_off[a] = bound_offset<N>(a, neg);
+      far_off[a] = bound_offset<N>(a, !neg);
+    }
+    const float* const v[3][3] = {{tris.v0x.data(), tris.v0y.data(), tris.v0z.data()},
+                                  {tris.v1x.data(), tris.v1y.data(), tris.v1z.data()},
+                                  {tris.v2x.data(), tris.v2y.data(), tris.v2z.data()}};
+    for (int k = 0; k < 3; ++k) {
+      verts[3 * k + 0] = v[k][wr.kx];
+      verts[3 * k + 1] = v[k][wr.ky];
+      verts[3 * k + 2] = v[k][wr.kz];
+    }
+  }
+};
+
+template <int N>
+HWY_INLINE uint32_t LaneChildren(const WideNode<N>& node, const LaneRay& r, float t_max) {
+  const hn::CappedTag<float, N> d;
+  const size_t L = hn::Lanes(d);
+  const float* nf = node_floats(node);
+  const auto ox = hn::Set(d, r.o[0]), oy = hn::Set(d, r.o[1]), oz = hn::Set(d, r.o[2]);
+  const auto ix = hn::Set(d, r.inv_d[0]), iy = hn::Set(d, r.inv_d[1]), iz = hn::Set(d, r.inv_d[2]);
+  const auto round = hn::Set(d, kFarRound);
+  uint32_t bits = 0;
+  for (size_t g = 0; g < size_t(N); g += L) {
+    const auto tx0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[0] + g), ox), ix);
+    const auto ty0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[1] + g), oy), iy);
+    const auto tz0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[2] + g), oz), iz);
+    const auto tx1 = hn::Mul(hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[0] + g), ox), ix), round);
+    const auto ty1 = hn::Mul(hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[1] + g), oy), iy), round);
+    const auto tz1 = hn::Mul(hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[2] + g), oz), iz), round);
+    // NaN slabs ignored: accumulator second (see traverse.cc).
+    const auto t0 = hn::Max(tz0, hn::Max(ty0, hn::Max(tx0, hn::Zero(d))));
+    const auto t1 = hn::Min(tz1, hn::Min(ty1, hn::Min(tx1, hn::Set(d, t_max))));
+    bits |= MaskBits(d, hn::Le(t0, t1)) << g;
+  }
+  return bits;
+}
+
+// Any hit among leaf triangles [first, first + count) for one ray (lanes = triangles).
+HWY_INLINE bool LaneLeafAny(const TriangleLeaves& tris, uint32_t first, uint32_t count, const LaneRay& r,
+                            float t_max) {
+  const hn::CappedTag<float, 8> d;
+  const size_t L = hn::Lanes(d);
+  const WatertightRay& wr = r.wr;
+  const auto okx = hn::Set(d, wr.o[wr.kx]), oky = hn::Set(d, wr.o[wr.ky]), okz = hn::Set(d, wr.o[wr.kz]);
+  const auto sx = hn::Set(d, wr.sx), sy = hn::Set(d, wr.sy), sz = hn::Set(d, wr.sz);
+  const auto tm = hn::Set(d, t_max);
+  for (uint32_t i = 0; i < count; i += uint32_t(L)) {
+    const size_t at = size_t(first) + i;  // full vectors stay within the kLeafPadding tail
+    const auto* v = r.verts;
+    const auto lanes = WatertightTest(
+        d, hn::Sub(hn::LoadU(d, v[0] + at), okx), hn::Sub(hn::LoadU(d, v[1] + at), oky),
+        hn::Sub(hn::LoadU(d, v[2] + at), okz), hn::Sub(hn::LoadU(d, v[3] + at), okx),
+        hn::Sub(hn::LoadU(d, v[4] + at), oky), hn::Sub(hn::LoadU(d, v[5] + at), okz),
+        hn::Sub(hn::LoadU(d, v[6] + at), okx), hn::Sub(hn::LoadU(d, v[7] + at), oky),
+        hn::Sub(hn::LoadU(d, v[8] + at), okz), sx, sy, sz, tm, hn::FirstN(d, count - i));
+    if (!hn::AllFalse(d, lanes.hit)) return true;
+    if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero))) {
+      for (uint32_t bits = MaskBits(d, lanes.zero); bits != 0; bits &= bits - 1) {
+        const size_t j = at + size_t(__builtin_ctz(bits));
+        TriangleHit th;
+        if (intersect_triangle(wr, t_max, {tris.v0x[j], tris.v0y[j], tris.v0z[j]},
+                               {tris.v1x[j], tris.v1y[j], tris.v1z[j]}, {tris.v2x[j], tris.v2y[j], tris.v2z[j]},
+                               &th))
+          return true;
+      }
+    }
+  }
+  return false;
+}
+
+// Whether anything in the subtree at (ref, count) blocks the ray in (0, t_max).
+template <int N>
+HWY_NOINLINE bool LaneAny(const WideBvh<N>& bvh, const TriangleLeaves& tris, const LaneRay& r, float t_max,
+                          uint32_t ref, uint32_t count) {
+  struct Entry {
+    uint32_t ref, count;
+  };
+  Entry stack[kMaxWideDepth * (N - 1) + 1];
+  int sp = 0;
+  for (;;) {
+    if (ref & kLeafFlag) {
+      if (LaneLeafAny(tris, ref & ~kLeafFlag, count, r, t_max)) return true;
+    } else {
+      const WideNode<N>& node = bvh.nodes[ref];
+      uint32_t bits = LaneChildren(node, r, t_max);
+      if (bits != 0) {
+        const uint32_t first = uint32_t(__builtin_ctz(bits));
+        for (bits &= bits - 1; bits != 0; bits &= bits - 1) {
+          const uint32_t c = uint32_t(__builtin_ctz(bits));
+          stack[sp++] = {node.child[c], node.leaf_count[c]};
+        }
+        ref = node.child[first];
+        count = node.leaf_count[first];
+        continue;
+      }
+    }
+    if (sp == 0) return false;
+    --sp;
+    ref = stack[sp].ref;
+    count = stack[sp].count;
+  }
+}
+
 template <int N, size_t P, bool kAny>
 void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p) {
   struct Entry {
@@ -330,16 +518,36 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
   int sp = 0;
   uint32_t ref = 0, count = 0, lanes = p.valid;  // the root is node 0
   for (;;) {
-    if (ref & kLeafFlag) {
+    if (kAny && std::popcount(lanes) <= kSingleThreshold<P>) {
+      // Few rays left here: one at a time is cheaper than a mostly empty packet.
+      for (uint32_t b = lanes; b != 0; b &= b - 1) {
+        const size_t i = size_t(__builtin_ctz(b));
+        const LaneRay r(p.ray(i), tris, std::integral_constant<int, N>());
+        if (LaneAny<N>(bvh, tris, r, p.t_max[i], ref, count)) p.t_max[i] = -kInfinity;
+      }
+      if (LiveLanes(p, p.valid) == 0) return;
+    } else if (ref & kLeafFlag) {
       // Any hit: stop once every ray is occluded.
       if (PacketLeaf<kAny>(tris, ref & ~kLeafFlag, count, lanes, p) && kAny && LiveLanes(p, p.valid) == 0) return;
     } else {
       const WideNode<N>& node = bvh.nodes[ref];
       uint32_t child_lanes[N];
       float t_near[N];
-      uint32_t bits = PacketChildren(node, p, lanes, child_lanes, t_near);
+      uint32_t cand = ~0u;
+      if (kAny && p.same_octant) cand = IntervalChildren(node, p);
+      uint32_t bits = cand == 0 ? 0 : PacketChildren<kAny>(node, p, lanes, cand, child_lanes, t_near);
       if (bits != 0) {
-        // Hit children far to near (insertion sort; no ordering needed for any hit, but it costs little).
+        if constexpr (kAny) {
+          // Any order will do: descend into the first hit child, push the others.
+          const uint32_t first = uint32_t(__builtin_ctz(bits));
+          for (bits &= bits - 1; bits != 0; bits &= bits - 1) {
+            const uint32_t c = uint32_t(__builtin_ctz(bits));
+            stack[sp++] = {node.child[c], node.leaf_count[c], child_lanes[c], 0.0f};
+          }
+          ref = node.child[first], count = node.leaf_count[first], lanes = child_lanes[first];
+          continue;
+        }
+        // Hit children far to near (insertion sort).
         uint32_t order[N];
         int n = 0;
         for (; bits != 0; bits &= bits - 1) {
@@ -382,7 +590,7 @@ void ClosestPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const Ray
   Packet<P> p;
   for (size_t begin = 0; begin < count; begin += P) {
     const size_t n = count - begin < P ? count - begin : P;
-    SetupPacket<N>(p, rays, begin, n);
+    SetupPacket<N, false>(p, rays, begin, n);
     if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, false>(bvh, tris, p);
     for (size_t i = 0; i < n; ++i)
       hits[begin + i] = p.prim[i] == kNoHit ? Hit{} : Hit{p.t_max[i], p.prim[i], p.b1[i], p.b2[i]};
@@ -395,7 +603,7 @@ void AnyPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA&
   Packet<P> p;
   for (size_t begin = 0; begin < count; begin += P) {
     const size_t n = count - begin < P ? count - begin : P;
-    SetupPacket<N>(p, rays, begin, n);
+    SetupPacket<N, true>(p, rays, begin, n);
     if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, true>(bvh, tris, p);
     // Occluded lanes were retired with t_max = -inf; invalid ones never were valid.
     for (size_t i = 0; i < n; ++i) occluded[begin + i] = ((p.valid >> i) & 1) && !(p.t_max[i] > 0) ? 1 : 0;

@@ -399,6 +399,41 @@ TEST_CASE("axis-parallel rays and zero direction components on box-aligned geome
   });
 }
 
+TEST_CASE("packets sharing a direction with zero components, spread origins (interval culling)", "[traverse]") {
+  // As above, but consecutive rays share one direction (whole packets in one octant, some with +-0 or tiny
+  // components, i.e. infinite or huge reciprocals) while their origins spread over the grid: the any-hit packet
+  // kernel culls children by the packet's interval of origins and reciprocals there. Expected: brute force.
+  Soup soup;
+  for (int x = -2; x <= 2; ++x)
+    for (int y = -2; y <= 2; ++y)
+      for (int z = -1; z <= 1; ++z) {
+        if ((x + y + z) % 2 != 0) continue;
+        TriangleMesh c = make_cube();
+        for (size_t i = 0; i < c.vertex_count(); ++i)
+          c.x[i] = x + 0.5f * c.x[i], c.y[i] = y + 0.5f * c.y[i], c.z[i] = z + 0.5f * c.z[i];
+        const Soup cs = soup_of(c);
+        soup.insert(soup.end(), cs.begin(), cs.end());
+      }
+  Rays rays;
+  const float coords[] = {-3, -2.5f, -2, -1.5f, -1, -0.5f, 0, 0.5f, 1, 1.5f, 2.5f};
+  const Vec3f dirs[] = {{0, 0, 1},     {1, 0.5f, 1},  {-0.0f, 0.25f, 1}, {0.3f, -0.0f, 1}, {1e-30f, 0, 1},
+                        {0.2f, 0.1f, 1}, {-0.2f, 0.3f, 1}};
+  for (Vec3f d : dirs)
+    for (float a : coords)
+      for (float b : coords) rays.add({a, b, -2.75f}, d, b > 1 ? 2.0f : kInfinity);
+  const Expected e = expect_brute(soup, rays);
+  size_t hits = 0, misses = 0;
+  for (const Hit& h : e.hits) (h.prim != kNoHit ? hits : misses) += 1;
+  REQUIRE(hits > rays.size() / 10);
+  REQUIRE(misses > rays.size() / 10);
+  const Tree<4> t4 = build<4>(soup);
+  const Tree<8> t8 = build<8>(soup);
+  for_each_target([&](const std::string&, bool) {
+    check_all_modes(t4, soup, rays, e, rays.size(), rays.size());
+    check_all_modes(t8, soup, rays, e, rays.size(), rays.size());
+  });
+}
+
 TEST_CASE("directions whose largest components tie choose the scalar test's axes", "[traverse]") {
   // |dx| = |dy| > |dz| and the like: the watertight test's axis choice (max_dimension, strict >) decides these
   // ties, and another choice shears differently and changes t in its last bits, which same_hit detects. The
