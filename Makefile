@@ -4,7 +4,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build demo test bench clean
+.PHONY: all deps configure build demo test bench bench-scalar-vs-simd clean
 
 all: build
 
@@ -24,9 +24,35 @@ demo: build
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600
 
-bench: CMAKE_ARGS += -DTORTE_BUILD_BENCH=ON
-bench: build
-	@ls $(BUILD)/bench 2>/dev/null || echo "no benchmarks yet"
+# Benchmarks (bench/RESULTS.md). `make bench` installs Embree (install-deps.sh --bench), configures, builds
+# torte_bench and embree-compare, and runs both. Quick by default (bunny, dragon, bunny-1m); BENCH_FULL=1 adds
+# the 4 M and 16 M triangle bunnies. BENCH_ARGS go to torte_bench (Google Benchmark flags, e.g.
+# BENCH_ARGS='--benchmark_filter=primary --benchmark_min_time=0.3'), COMPARE_ARGS to embree-compare
+# (--threads 2, --reps 5, --scenes bunny,dragon).
+BENCH_ARGS ?= --benchmark_min_time=0.1
+COMPARE_ARGS ?=
+BENCH_FULL ?= 0
+SCALAR_BUILD ?= $(BUILD)-scalar
+SCALAR_VS_SIMD_FILTER ?= /(primary/closest|shadow/any)/wide8/
+
+bench:
+	bash scripts/install-deps.sh --bench
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DTORTE_BUILD_BENCH=ON $(CMAKE_ARGS)
+	cmake --build $(BUILD) -j $(JOBS) --target torte_bench embree-compare
+	TORTE_BENCH_FULL=$(BENCH_FULL) ./$(BUILD)/bench/torte_bench $(BENCH_ARGS)
+	TORTE_BENCH_FULL=$(BENCH_FULL) ./$(BUILD)/bench/embree-compare $(COMPARE_ARGS)
+
+# The same torte_bench cases in this SIMD build and in a scalar-only build ($(SCALAR_BUILD), TORTE_SCALAR_ONLY=ON);
+# prints per case both Mrays/s and speedup=<simd/scalar>.
+bench-scalar-vs-simd:
+	bash scripts/install-deps.sh
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DTORTE_BUILD_BENCH=ON -DTORTE_SCALAR_ONLY=OFF $(CMAKE_ARGS)
+	cmake -S . -B $(SCALAR_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DTORTE_BUILD_BENCH=ON -DTORTE_SCALAR_ONLY=ON \
+	  -DTORTE_BUILD_TESTS=OFF $(CMAKE_ARGS)
+	cmake --build $(BUILD) -j $(JOBS) --target torte_bench
+	cmake --build $(SCALAR_BUILD) -j $(JOBS) --target torte_bench
+	TORTE_BENCH_FULL=$(BENCH_FULL) bash bench/scalar_vs_simd.sh ./$(BUILD)/bench/torte_bench \
+	  ./$(SCALAR_BUILD)/bench/torte_bench '$(SCALAR_VS_SIMD_FILTER)' $(BENCH_ARGS)
 
 clean:
 	rm -rf $(BUILD) out

@@ -1,0 +1,421 @@
+// embree-compare: identical rays through Embree 3 and torte on the shared workloads (workloads.h), one line per
+// workload:
+//   workload=<name> tris=<n> threads=<t> torte_mrays=<x> embree_mrays=<y> ratio=<x/y>
+//   workload=build tris=<n> threads=<t> torte_mtris=<x> embree_mtris=<y> ratio=<x/y>
+// (other lines start with '#'). Like is compared with like:
+//   primary         torte packets of 16 (closest)  vs rtcIntersect16
+//   primary-single  torte single rays (closest)    vs rtcIntersect1
+//   shadow          torte packets of 16 (any hit)  vs rtcOccluded16
+//   shadow-single   torte single rays (any hit)    vs rtcOccluded1
+//   diffuse         torte single rays (closest)    vs rtcIntersect1
+// Embree's packets are timed with both intersect-context flags, COHERENT (which lets rtcIntersect16 /
+// rtcOccluded16 trace a packet with its frustum traversal) and INCOHERENT, and the faster one is the
+// reference (coherent wins for camera rays, incoherent for the shadow rays, whose origins spread); a '#' line
+// gives both. --embree-context coherent|incoherent pins one. Single rays use the default (INCOHERENT) context.
+//   build           bounds + SAH build + collapse + leaves  vs rtcCommitScene at RTC_BUILD_QUALITY_MEDIUM
+// Times are medians of --reps repetitions, torte and Embree interleaved so that load from other processes hits
+// both alike. One thread: traversal is timed in CPU time of the calling thread, builds in CPU time of the process
+// (so time the machine's other processes take is not counted; Embree and torte are both limited to one thread). With
+// --threads T > 1 everything is wall time, rays are split into chunks of 4096 over a TBB arena of T threads
+// (torte and Embree alike) and both builders are limited to T threads.
+//
+// Hit distances must agree (relative 1e-4, and hit vs miss); the fraction of disagreeing rays is printed per
+// workload and the program fails (exit 1, "FAIL" on stderr) when it exceeds 1e-4 for any workload.
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "accel/bvh_build.h"
+#include "core/error.h"
+#include "traverse.h"
+#include "workloads.h"
+
+using namespace torte;
+using namespace torte::bench;
+
+namespace {
+
+constexpr float kRelTol = 1e-4f;
+constexpr double kMaxMismatchFraction = 1e-4;
+constexpr size_t kChunk = 4096;  // rays per parallel task (a multiple of 64: whole 8x8 tiles)
+
+struct Options {
+  int threads = 1;
+  int reps = 5;
+  int packet = 16;
+  int width = kDefaultBvhWidth;
+  std::string embree_context = "best";  // Embree's packets: best of both, or "coherent" / "incoherent"
+};
+Options g_opt;
+
+// ---- timing ----------------------------------------------------------------------------------------------------
+
+double wall_now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+double cpu_now(clockid_t clock) {
+  timespec ts;
+  clock_gettime(clock, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+// Builds: with one thread, CPU time of the whole process (whichever threads the builders use, and not the time
+// other processes take the core away); with more, wall time.
+double build_clock() { return g_opt.threads == 1 ? cpu_now(CLOCK_PROCESS_CPUTIME_ID) : wall_now(); }
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Runs f(begin, end) over [0, n): directly on this thread with one thread, else in chunks over TBB.
+void for_rays(size_t n, const std::function<void(size_t, size_t)>& f) {
+  if (g_opt.threads == 1) {
+    f(0, n);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + kChunk - 1) / kChunk, 1),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t c = r.begin(); c < r.end(); ++c) f(c * kChunk, std::min(n, (c + 1) * kChunk));
+                    });
+}
+
+// Seconds taken by f, in the clock described at the top of the file.
+double time_traversal(const std::function<void()>& f) {
+  const bool cpu = g_opt.threads == 1;
+  const double t0 = cpu ? cpu_now(CLOCK_THREAD_CPUTIME_ID) : wall_now();
+  f();
+  return (cpu ? cpu_now(CLOCK_THREAD_CPUTIME_ID) : wall_now()) - t0;
+}
+
+// ---- Embree ----------------------------------------------------------------------------------------------------
+
+std::atomic<int64_t> g_embree_bytes{0}, g_embree_peak{0};
+
+bool memory_monitor(void*, ssize_t bytes, bool) {
+  const int64_t now = g_embree_bytes += bytes;
+  int64_t peak = g_embree_peak.load();
+  while (now > peak && !g_embree_peak.compare_exchange_weak(peak, now)) {
+  }
+  return true;
+}
+
+void embree_error(void*, RTCError code, const char* str) {
+  std::fprintf(stderr, "embree-compare: Embree error %d: %s\n", int(code), str ? str : "");
+  std::exit(3);
+}
+
+RTCScene build_embree(RTCDevice dev, const std::vector<float>& vertices, const TriangleMesh& mesh) {
+  RTCScene scene = rtcNewScene(dev);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+  RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_MEDIUM);
+  // Shared buffers: Embree reads the caller's arrays in place (the vertex array carries one float of padding,
+  // which Embree requires for its 16-byte loads; torte's index triples are used as they are).
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices.data(), 0, 12,
+                             mesh.vertex_count());
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0, 12,
+                             mesh.triangle_count());
+  rtcCommitGeometry(g);
+  rtcAttachGeometry(scene, g);
+  rtcReleaseGeometry(g);
+  rtcCommitScene(scene);
+  return scene;
+}
+
+void embree_closest1(RTCScene scene, const RayBatch& rays, size_t b, size_t e, float* t) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  for (size_t i = b; i < e; ++i) {
+    RTCRayHit rh;
+    rh.ray.org_x = rays.ox[i], rh.ray.org_y = rays.oy[i], rh.ray.org_z = rays.oz[i], rh.ray.tnear = 0;
+    rh.ray.dir_x = rays.dx[i], rh.ray.dir_y = rays.dy[i], rh.ray.dir_z = rays.dz[i], rh.ray.time = 0;
+    rh.ray.tfar = rays.t_max[i], rh.ray.mask = ~0u, rh.ray.id = uint32_t(i), rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &ctx, &rh);
+    t[i] = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : kInfinity;
+  }
+}
+
+void embree_any1(RTCScene scene, const RayBatch& rays, size_t b, size_t e, uint8_t* occ) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  for (size_t i = b; i < e; ++i) {
+    RTCRay r;
+    r.org_x = rays.ox[i], r.org_y = rays.oy[i], r.org_z = rays.oz[i], r.tnear = 0;
+    r.dir_x = rays.dx[i], r.dir_y = rays.dy[i], r.dir_z = rays.dz[i], r.time = 0;
+    r.tfar = rays.t_max[i], r.mask = ~0u, r.id = uint32_t(i), r.flags = 0;
+    rtcOccluded1(scene, &ctx, &r);
+    occ[i] = r.tfar < 0;  // Embree sets tfar = -inf for an occluded ray
+  }
+}
+
+// Loads rays [i, min(i + 16, e)) into a packet; the other lanes are invalid.
+template <class Packet>
+void load16(Packet& r, int* valid, const RayBatch& rays, size_t i, size_t e) {
+  for (int k = 0; k < 16; ++k) {
+    const size_t j = i + k;
+    const bool ok = j < e;
+    const size_t s = ok ? j : i;
+    valid[k] = ok ? -1 : 0;
+    r.org_x[k] = rays.ox[s], r.org_y[k] = rays.oy[s], r.org_z[k] = rays.oz[s], r.tnear[k] = 0;
+    r.dir_x[k] = rays.dx[s], r.dir_y[k] = rays.dy[s], r.dir_z[k] = rays.dz[s], r.time[k] = 0;
+    r.tfar[k] = rays.t_max[s], r.mask[k] = ~0u, r.id[k] = uint32_t(j), r.flags[k] = 0;
+  }
+}
+
+void embree_closest16(RTCScene scene, const RayBatch& rays, size_t b, size_t e, float* t, bool coherent) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[16];
+  for (size_t i = b; i < e; i += 16) {
+    load16(rh.ray, valid, rays, i, e);
+    for (int k = 0; k < 16; ++k) rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect16(valid, scene, &ctx, &rh);
+    for (int k = 0; k < 16 && i + k < e; ++k)
+      t[i + k] = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar[k] : kInfinity;
+  }
+}
+
+void embree_any16(RTCScene scene, const RayBatch& rays, size_t b, size_t e, uint8_t* occ, bool coherent) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRay16 r;
+  alignas(64) int valid[16];
+  for (size_t i = b; i < e; i += 16) {
+    load16(r, valid, rays, i, e);
+    rtcOccluded16(valid, scene, &ctx, &r);
+    for (int k = 0; k < 16 && i + k < e; ++k) occ[i + k] = r.tfar[k] < 0;
+  }
+}
+
+// ---- comparison ------------------------------------------------------------------------------------------------
+
+bool g_failed = false;
+
+void print_ratio_line(const char* workload, size_t tris, double torte_rate, double embree_rate, bool build) {
+  std::printf("workload=%s tris=%zu threads=%d torte_%s=%.3f embree_%s=%.3f ratio=%.3f\n", workload, tris,
+              g_opt.threads, build ? "mtris" : "mrays", torte_rate, build ? "mtris" : "mrays", embree_rate,
+              torte_rate / embree_rate);
+  std::fflush(stdout);
+}
+
+void report_check(const char* workload, const Check& vs_embree, const Check& vs_reference, size_t embree_hits) {
+  const bool bad = vs_embree.mismatch_fraction() > kMaxMismatchFraction;
+  std::printf("# %s: torte vs embree: %zu of %zu rays disagree (%.2e)%s; torte hits %zu, embree hits %zu; "
+              "torte vs scalar reference: %zu disagree\n",
+              workload, vs_embree.mismatches, vs_embree.rays, vs_embree.mismatch_fraction(),
+              bad ? " ABOVE THE 1e-4 LIMIT" : "", vs_embree.hits, embree_hits, vs_reference.mismatches);
+  if (bad) {
+    std::fprintf(stderr, "embree-compare: FAIL: %s: %.2e of the rays disagree between torte and Embree (limit %.0e)\n",
+                 workload, vs_embree.mismatch_fraction(), kMaxMismatchFraction);
+    g_failed = true;
+  }
+}
+
+enum class Kind { Closest, Any };
+
+template <int N>
+void compare_workload(const char* name, const BenchScene& s, const Workload& w, const TorteAccel<N>& a,
+                      RTCScene scene, Kind kind, bool packets) {
+  const size_t n = w.rays.size();
+  std::vector<Hit> hits(kind == Kind::Closest ? n : 0);
+  std::vector<float> torte_t(kind == Kind::Closest ? n : 0), embree_t(kind == Kind::Closest ? n : 0);
+  std::vector<uint8_t> torte_occ(kind == Kind::Any ? n : 0), embree_occ(kind == Kind::Any ? n : 0);
+  auto run_torte = [&] {
+    for_rays(n, [&](size_t b, size_t e) {
+      const RaySoA soa = w.rays.soa(b);
+      if (kind == Kind::Closest) {
+        if (packets) intersect_closest_packets(a.bvh, a.leaves, soa, e - b, hits.data() + b, g_opt.packet);
+        else intersect_closest(a.bvh, a.leaves, soa, e - b, hits.data() + b);
+      } else {
+        if (packets) intersect_any_packets(a.bvh, a.leaves, soa, e - b, torte_occ.data() + b, g_opt.packet);
+        else intersect_any(a.bvh, a.leaves, soa, e - b, torte_occ.data() + b);
+      }
+    });
+  };
+  auto run_embree = [&](bool coherent) {
+    for_rays(n, [&](size_t b, size_t e) {
+      if (kind == Kind::Closest) {
+        if (packets) embree_closest16(scene, w.rays, b, e, embree_t.data(), coherent);
+        else embree_closest1(scene, w.rays, b, e, embree_t.data());
+      } else {
+        if (packets) embree_any16(scene, w.rays, b, e, embree_occ.data(), coherent);
+        else embree_any1(scene, w.rays, b, e, embree_occ.data());
+      }
+    });
+  };
+  // Embree variants timed: [0] COHERENT context, [1] INCOHERENT (single rays: only the default, INCOHERENT).
+  const bool try_coherent = packets && g_opt.embree_context != "incoherent";
+  const bool try_incoherent = !packets || g_opt.embree_context != "coherent";
+  std::vector<double> tt, te[2];
+  for (int r = 0; r < g_opt.reps; ++r) {
+    tt.push_back(time_traversal(run_torte));
+    if (try_coherent) te[0].push_back(time_traversal([&] { run_embree(true); }));
+    if (try_incoherent) te[1].push_back(time_traversal([&] { run_embree(false); }));
+  }
+  Check vs_embree, vs_ref;
+  size_t embree_hits = 0;
+  if (kind == Kind::Closest) {
+    for (size_t i = 0; i < n; ++i) torte_t[i] = hits[i].prim != kNoHit ? hits[i].t : kInfinity;
+    Reference er;  // Embree's answer as the reference
+    er.t = embree_t;
+    vs_embree = check_closest(er, torte_t.data(), n, kRelTol);
+    vs_ref = check_closest(w.ref, torte_t.data(), n, kRelTol);
+    for (float t : embree_t) embree_hits += t < kInfinity;
+  } else {
+    Reference er;
+    er.occluded = embree_occ;
+    vs_embree = check_any(er, torte_occ.data(), n);
+    vs_ref = check_any(w.ref, torte_occ.data(), n);
+    for (uint8_t o : embree_occ) embree_hits += o;
+  }
+  const double mt = double(n) / median(tt) * 1e-6;
+  const double me_coherent = try_coherent ? double(n) / median(te[0]) * 1e-6 : 0;
+  const double me_incoherent = try_incoherent ? double(n) / median(te[1]) * 1e-6 : 0;
+  print_ratio_line(name, s.triangles(), mt, std::max(me_coherent, me_incoherent), false);
+  if (packets)
+    std::printf("# %s: embree_mrays with the COHERENT context %.3f, INCOHERENT %.3f (0: not run)\n", name,
+                me_coherent, me_incoherent);
+  report_check(name, vs_embree, vs_ref, embree_hits);
+}
+
+template <int N>
+void run_scene(RTCDevice dev, const BenchScene& s) {
+  const TriangleMesh& mesh = s.mesh;
+  const size_t tris = s.triangles();
+  std::printf("# mesh=%s tris=%zu (model %zu + 12 box) rays: primary %zu, diffuse %zu, shadow %zu\n", s.name.c_str(),
+              tris, s.model_triangles, s.primary.rays.size(), s.diffuse.rays.size(), s.shadow.rays.size());
+  // Embree's float3 vertex buffer (AoS, + 1 float of padding); made once, outside the timing.
+  std::vector<float> vertices(3 * mesh.vertex_count() + 1, 0.0f);
+  for (size_t i = 0; i < mesh.vertex_count(); ++i)
+    vertices[3 * i] = mesh.x[i], vertices[3 * i + 1] = mesh.y[i], vertices[3 * i + 2] = mesh.z[i];
+
+  // Builds, interleaved. The last ones are kept for tracing.
+  std::vector<double> tt, te;
+  TorteAccel<N> accel;
+  RTCScene scene = nullptr;
+  int64_t embree_bytes = 0, embree_peak = 0;
+  for (int r = 0; r < g_opt.reps; ++r) {
+    accel = {};
+    double t0 = build_clock();
+    accel = build_torte<N>(mesh);
+    tt.push_back(build_clock() - t0);
+    if (scene) rtcReleaseScene(scene);
+    const int64_t before = g_embree_bytes.load();
+    g_embree_peak = before;
+    t0 = build_clock();
+    scene = build_embree(dev, vertices, mesh);
+    te.push_back(build_clock() - t0);
+    embree_bytes = g_embree_bytes.load() - before;
+    embree_peak = g_embree_peak.load() - before;
+  }
+  print_ratio_line("build", tris, double(tris) / median(tt) * 1e-6, double(tris) / median(te) * 1e-6, true);
+  std::printf("# build memory: torte %.1f B/tri (wide%d nodes + prim_indices + leaf triangles; mesh excluded), "
+              "embree %.1f B/tri (BVH + leaves, peak during build %.1f B/tri; shared mesh excluded)\n",
+              double(accel.bytes()) / double(tris), N, double(embree_bytes) / double(tris),
+              double(embree_peak) / double(tris));
+
+  compare_workload("primary", s, s.primary, accel, scene, Kind::Closest, true);
+  compare_workload("primary-single", s, s.primary, accel, scene, Kind::Closest, false);
+  compare_workload("shadow", s, s.shadow, accel, scene, Kind::Any, true);
+  compare_workload("shadow-single", s, s.shadow, accel, scene, Kind::Any, false);
+  compare_workload("diffuse", s, s.diffuse, accel, scene, Kind::Closest, false);
+  rtcReleaseScene(scene);
+}
+
+int usage() {
+  std::fprintf(stderr,
+               "usage: embree-compare [--threads T] [--reps R] [--full] [--scenes a,b,...] [--packet 8|16] "
+               "[--width 4|8] [--embree-context best|coherent|incoherent]\n"
+               "  --threads T  traversal and build threads (default 1)\n"
+               "  --reps R     repetitions per measurement; medians are printed (default 5)\n"
+               "  --full       add the 4 M and 16 M triangle bunnies (or TORTE_BENCH_FULL=1)\n"
+               "  --scenes     subset of bunny,dragon,bunny-1m,bunny-4m,bunny-16m (or TORTE_BENCH_SCENES)\n"
+               "  --packet     torte's packet size against rtcIntersect16 / rtcOccluded16 (default 16)\n"
+               "  --width      torte's BVH width (default %d)\n"
+               "  --embree-context  Embree's packets: the faster of the COHERENT and INCOHERENT intersect\n"
+               "               contexts (best, default), or only one of them\n",
+               kDefaultBvhWidth);
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
+    if (a == "--full") {
+      set_full_run(true);
+    } else if (a == "--embree-context") {
+      const char* v = value();
+      if (!v) return usage();
+      g_opt.embree_context = v;
+    } else if (a == "--threads" || a == "--reps" || a == "--packet" || a == "--width" || a == "--scenes") {
+      const char* v = value();
+      if (!v) return usage();
+      if (a == "--scenes") setenv("TORTE_BENCH_SCENES", v, 1);
+      else (a == "--threads" ? g_opt.threads : a == "--reps" ? g_opt.reps : a == "--packet" ? g_opt.packet
+                                                                                          : g_opt.width) = std::atoi(v);
+    } else {
+      return usage();
+    }
+  }
+  if (g_opt.threads < 1 || g_opt.reps < 1 || (g_opt.packet != 8 && g_opt.packet != 16) ||
+      (g_opt.width != 4 && g_opt.width != 8) ||
+      (g_opt.embree_context != "best" && g_opt.embree_context != "coherent" && g_opt.embree_context != "incoherent"))
+    return usage();
+
+  std::string why;
+  if (!shared_data_available(&why)) {
+    std::printf("embree-compare: SKIPPED, no benchmark meshes: %s\n", why.c_str());
+    return 0;
+  }
+  tbb::global_control gc(tbb::global_control::max_allowed_parallelism, size_t(g_opt.threads));
+  const std::string config = "threads=" + std::to_string(g_opt.threads);
+  RTCDevice dev = rtcNewDevice(config.c_str());
+  if (!dev) {
+    std::fprintf(stderr, "embree-compare: rtcNewDevice failed (error %d)\n", int(rtcGetDeviceError(nullptr)));
+    return 3;
+  }
+  rtcSetDeviceErrorFunction(dev, embree_error, nullptr);
+  rtcSetDeviceMemoryMonitorFunction(dev, memory_monitor, nullptr);
+  std::printf("# embree-compare: Embree %s, torte traversal target %s, torte wide%d, torte packet %d, Embree packet "
+              "context %s, threads %d, median of %d, %s\n",
+              RTC_VERSION_STRING, traversal_target_name(), g_opt.width, g_opt.packet,
+              g_opt.embree_context.c_str(), g_opt.threads, g_opt.reps,
+              g_opt.threads == 1 ? "traversal in thread CPU time, builds in process CPU time" : "wall time");
+  std::fflush(stdout);
+  try {
+    for (const std::string& name : scene_names()) {
+      const BenchScene& s = get_scene(name);
+      if (g_opt.width == 4) run_scene<4>(dev, s);
+      else run_scene<8>(dev, s);
+      release_scene();
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "embree-compare: %s\n", e.what());
+    rtcReleaseDevice(dev);
+    return 1;
+  }
+  rtcReleaseDevice(dev);
+  if (g_failed) {
+    std::fprintf(stderr, "embree-compare: FAIL: torte and Embree disagree on more than 1e-4 of the rays (see above)\n");
+    return 1;
+  }
+  return 0;
+}
