@@ -62,6 +62,7 @@ Vec3f vec3_args(lua_State* L, const char* fn, bool allow_scalar) {
   if (lua_istable(L, 1)) return check_vec3(L, 1, std::string(fn) + " argument");
   if (allow_scalar && lua_gettop(L) == 1 && lua_type(L, 1) == LUA_TNUMBER) {
     const float s = float(lua_tonumber(L, 1));
+    if (!std::isfinite(s)) throw Error(std::string(fn) + " expects finite numbers");
     return {s, s, s};
   }
   Vec3f v;
@@ -69,6 +70,7 @@ Vec3f vec3_args(lua_State* L, const char* fn, bool allow_scalar) {
     if (lua_type(L, i + 1) != LUA_TNUMBER)
       throw Error(std::string(fn) + " expects three numbers or a table {x, y, z}");
     v[i] = float(lua_tonumber(L, i + 1));
+    if (!std::isfinite(v[i])) throw Error(std::string(fn) + " expects finite numbers");
   }
   return v;
 }
@@ -80,6 +82,7 @@ int l_identity(lua_State* L) { push_transform(L, Transform()); return 1; }
 int l_rotate(lua_State* L) {
   if (lua_type(L, 1) != LUA_TNUMBER) throw Error("torte.rotate expects (degrees, {x, y, z})");
   const float deg = float(lua_tonumber(L, 1));
+  if (!std::isfinite(deg)) throw Error("torte.rotate expects a finite angle");
   push_transform(L, rotate(deg, check_vec3(L, 2, "torte.rotate axis")));
   return 1;
 }
@@ -92,6 +95,7 @@ int l_matrix(lua_State* L) {  // 16 numbers, row-major
     lua_rawgeti(L, 1, i + 1);
     if (lua_type(L, -1) != LUA_TNUMBER) throw Error("torte.matrix expects 16 numbers (row-major 4x4)");
     m.m[i / 4][i % 4] = float(lua_tonumber(L, -1));
+    if (!std::isfinite(m.m[i / 4][i % 4])) throw Error("torte.matrix expects finite numbers");
     lua_pop(L, 1);
   }
   if (m.m[3][0] != 0 || m.m[3][1] != 0 || m.m[3][2] != 0 || m.m[3][3] != 1)
