@@ -3,155 +3,31 @@
 // and Ctrl-C.
 #include <catch2/catch.hpp>
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
-extern char** environ;
+#include "test_support.h"
 
 namespace fs = std::filesystem;
+using namespace torte::test;
 
 namespace {
 
-// A fresh directory per test case and process (ctest may run test cases in parallel), removed afterwards.
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("torte_cli_" + std::to_string(getpid()) + "_" + name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& file) const { return (path / file).string(); }
-  // Writes a script and returns its path.
-  std::string script(const std::string& name, const std::string& source) const {
-    const std::string p = *this / name;
-    std::ofstream(p) << source;
-    return p;
-  }
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-struct Result {
-  bool exited = false;  // exited normally (not killed by a signal)
-  int code = -1;        // exit code when `exited`
-  int signal = 0;       // the terminating signal otherwise
-  std::string out, err;
-  double seconds_after_sigint = -1;
-};
-
-// A started torte process whose stdout and stderr go to files in `dir`.
-class Process {
- public:
-  Process(const TempDir& dir, const std::vector<std::string>& args)
-      : out_path_(dir / "stdout.txt"), err_path_(dir / "stderr.txt") {
-    std::vector<std::string> argv_s{TORTE_BINARY};
-    argv_s.insert(argv_s.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& a : argv_s) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 1, out_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, err_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int rc = posix_spawn(&pid_, TORTE_BINARY, &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) {
-      pid_ = -1;
-      FAIL("cannot start " << TORTE_BINARY << ": " << std::strerror(rc));
-    }
-  }
-  ~Process() {
-    if (pid_ > 0) {  // still running after a failed check: do not leave it behind
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-    }
-  }
-  std::string stdout_text() const { return read_file(out_path_); }
-  void send(int sig) { kill(pid_, sig); }
-  // Waits up to `timeout` seconds; returns false (process still running) on timeout.
-  bool wait(double timeout, Result* r) {
-    const auto start = std::chrono::steady_clock::now();
-    for (;;) {
-      int status = 0;
-      const pid_t w = waitpid(pid_, &status, WNOHANG);
-      if (w == pid_) {
-        pid_ = -1;
-        r->exited = WIFEXITED(status);
-        r->code = r->exited ? WEXITSTATUS(status) : -1;
-        r->signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-        r->out = read_file(out_path_);
-        r->err = read_file(err_path_);
-        return true;
-      }
-      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeout) return false;
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-  }
-
- private:
-  std::string out_path_, err_path_;
-  pid_t pid_ = -1;
-};
-
+// Runs torte to the end, failing the test case after `timeout` seconds.
 Result run(const TempDir& dir, const std::vector<std::string>& args, double timeout = 30) {
-  Process p(dir, args);
-  Result r;
-  if (!p.wait(timeout, &r)) FAIL("torte did not finish within " << timeout << " s");
-  return r;
+  return run_torte(dir, args, timeout);
 }
 
-// No crash: a normal exit, and nothing on stderr that a crash or an uncaught exception would print.
-void check_no_crash(const Result& r) {
-  INFO("stderr: " << r.err);
-  CHECK(r.exited);
-  CHECK(r.signal == 0);
-  CHECK_THAT(r.err, !Catch::Contains("terminate called"));
-  CHECK_THAT(r.err, !Catch::Contains("Segmentation"));
-  CHECK_THAT(r.err, !Catch::Contains("Aborted"));
-  CHECK_THAT(r.err, !Catch::Contains("stack traceback"));
-}
-
-// A failed run: exit code 1 and exactly one line on stderr, starting "torte: error:". Returns that line.
-std::string check_error(const Result& r) {
-  check_no_crash(r);
-  INFO("stderr: " << r.err);
-  CHECK(r.code == 1);
-  const std::vector<std::string> lines = lines_of(r.err);
-  REQUIRE(lines.size() == 1);
-  CHECK_THAT(lines[0], Catch::StartsWith("torte: error: "));
-  CHECK(r.err.back() == '\n');
-  return lines[0];
-}
+// A fresh temp directory for a test case of this file.
+struct CliDir : TempDir {
+  explicit CliDir(const std::string& name) : TempDir("cli", name) {}
+};
 
 // A command-line usage error: one line like any error, ending with a pointer to --help.
 std::string check_usage_error(const Result& r) {
@@ -172,15 +48,15 @@ local camera = torte.camera.perspective{eye = {0, 0, 0}, look_at = {0, 0, 1}}
 }  // namespace
 
 TEST_CASE("cli: a Lua syntax error names the script file and line", "[cli]") {
-  TempDir dir("syntax");
-  const std::string script = dir.script("syntax.lua", "local a = 1\nlocal b = = 2\n");
+  CliDir dir("syntax");
+  const std::string script = dir.write("syntax.lua", "local a = 1\nlocal b = = 2\n");
   const std::string line = check_error(run(dir, {script}));
   CHECK_THAT(line, Catch::Contains(script + ":2:"));
 }
 
 TEST_CASE("cli: an unknown keyword key names the key, the script file and line", "[cli]") {
-  TempDir dir("unknown_key");
-  const std::string script = dir.script("typo.lua", "local torte = require 'torte'\n\nlocal s = torte.shape.sphere{radis = 1}\n");
+  CliDir dir("unknown_key");
+  const std::string script = dir.write("typo.lua", "local torte = require 'torte'\n\nlocal s = torte.shape.sphere{radis = 1}\n");
   const std::string line = check_error(run(dir, {script}));
   CHECK_THAT(line, Catch::Contains(script + ":3:"));
   CHECK_THAT(line, Catch::Contains("torte.shape.sphere"));
@@ -189,8 +65,8 @@ TEST_CASE("cli: an unknown keyword key names the key, the script file and line",
 }
 
 TEST_CASE("cli: a keyword value of the wrong type names the key", "[cli]") {
-  TempDir dir("wrong_type");
-  const std::string script = dir.script("type.lua", "local s = torte.shape.sphere{radius = 'big'}\n");
+  CliDir dir("wrong_type");
+  const std::string script = dir.write("type.lua", "local s = torte.shape.sphere{radius = 'big'}\n");
   const std::string line = check_error(run(dir, {script}));
   CHECK_THAT(line, Catch::Contains(script + ":1:"));
   CHECK_THAT(line, Catch::Contains("'radius'"));
@@ -198,8 +74,8 @@ TEST_CASE("cli: a keyword value of the wrong type names the key", "[cli]") {
 }
 
 TEST_CASE("cli: a missing required key names it", "[cli]") {
-  TempDir dir("required");
-  const std::string script = dir.script("required.lua", "-- no position\nlocal l = torte.light.point{intensity = 1}\n");
+  CliDir dir("required");
+  const std::string script = dir.write("required.lua", "-- no position\nlocal l = torte.light.point{intensity = 1}\n");
   const std::string line = check_error(run(dir, {script}));
   CHECK_THAT(line, Catch::Contains(script + ":2:"));
   CHECK_THAT(line, Catch::Contains("'position'"));
@@ -207,34 +83,34 @@ TEST_CASE("cli: a missing required key names it", "[cli]") {
 }
 
 TEST_CASE("cli: errors raised by scripts are one line", "[cli]") {
-  TempDir dir("script_error");
+  CliDir dir("script_error");
   SECTION("a multi-line message") {
-    const std::string script = dir.script("multi.lua", "error('first line\\nsecond line')\n");
+    const std::string script = dir.write("multi.lua", "error('first line\\nsecond line')\n");
     const std::string line = check_error(run(dir, {script}));
     CHECK_THAT(line, Catch::Contains(script + ":1:"));
     CHECK_THAT(line, Catch::Contains("first line"));
     CHECK_THAT(line, Catch::Contains("second line"));
   }
   SECTION("a non-string error value") {
-    const std::string script = dir.script("table.lua", "error({})\n");
+    const std::string script = dir.write("table.lua", "error({})\n");
     check_error(run(dir, {script}));
   }
   SECTION("a runtime error in plain Lua") {
-    const std::string script = dir.script("nil.lua", "local t = nil\nprint(t.x)\n");
+    const std::string script = dir.write("nil.lua", "local t = nil\nprint(t.x)\n");
     const std::string line = check_error(run(dir, {script}));
     CHECK_THAT(line, Catch::Contains(script + ":2:"));
   }
 }
 
 TEST_CASE("cli: a missing script file is named", "[cli]") {
-  TempDir dir("missing");
+  CliDir dir("missing");
   const std::string script = dir / "does-not-exist.lua";
   const std::string line = check_error(run(dir, {script}));
   CHECK_THAT(line, Catch::Contains("does-not-exist.lua"));
 }
 
 TEST_CASE("cli: --help and --version", "[cli]") {
-  TempDir dir("help");
+  CliDir dir("help");
   SECTION("--help") {
     const Result r = run(dir, {"--help"});
     check_no_crash(r);
@@ -253,7 +129,7 @@ TEST_CASE("cli: --help and --version", "[cli]") {
   }
   SECTION("the version is torte.version") {
     const std::string script =
-        dir.script("version.lua", "assert(type(torte.version) == 'string' and #torte.version > 0)\n"
+        dir.write("version.lua", "assert(type(torte.version) == 'string' and #torte.version > 0)\n"
                                   "io.write(torte.version, '\\n')\n");
     const Result r = run(dir, {script});
     check_no_crash(r);
@@ -264,8 +140,8 @@ TEST_CASE("cli: --help and --version", "[cli]") {
 }
 
 TEST_CASE("cli: command-line usage errors", "[cli]") {
-  TempDir dir("usage");
-  const std::string script = dir.script("ok.lua", "-- does nothing\n");
+  CliDir dir("usage");
+  const std::string script = dir.write("ok.lua", "-- does nothing\n");
   SECTION("the script itself runs without errors") {
     const Result r = run(dir, {script});
     check_no_crash(r);
@@ -287,8 +163,8 @@ TEST_CASE("cli: command-line usage errors", "[cli]") {
 }
 
 TEST_CASE("cli: bad option values and a missing script", "[cli]") {
-  TempDir dir("usage_values");
-  const std::string script = dir.script("ok.lua", "-- does nothing\n");
+  CliDir dir("usage_values");
+  const std::string script = dir.write("ok.lua", "-- does nothing\n");
   SECTION("no script") {
     check_usage_error(run(dir, {}));
   }
@@ -308,8 +184,8 @@ TEST_CASE("cli: bad option values and a missing script", "[cli]") {
 }
 
 TEST_CASE("cli: torte.options rejects an unknown scene argument, naming it", "[cli]") {
-  TempDir dir("options");
-  const std::string script = dir.script("opts.lua",
+  CliDir dir("options");
+  const std::string script = dir.write("opts.lua",
                                         "local torte = require 'torte'\n"
                                         "local opt = torte.options{width = 8, name = 'x'}\n");
   SECTION("unknown argument") {
@@ -331,8 +207,8 @@ TEST_CASE("cli: torte.options rejects an unknown scene argument, naming it", "[c
 }
 
 TEST_CASE("cli: key=value arguments reach the script with Lua types", "[cli]") {
-  TempDir dir("args");
-  const std::string script = dir.script("args.lua", R"(
+  CliDir dir("args");
+  const std::string script = dir.write("args.lua", R"(
 local args = ...
 assert(args == torte.args, "the script's ... is torte.args")
 assert(type(torte.args.n) == "number", "n is a " .. type(torte.args.n))
@@ -366,8 +242,8 @@ assert(opt.n == 3 and opt.extra == 7 and opt.flag == true and opt.empty == "")
 }
 
 TEST_CASE("cli: --spp overrides the script's samples per pixel", "[cli]") {
-  TempDir dir("spp");
-  const std::string script = dir.script("spp.lua", std::string(kSkyScene) + R"(
+  CliDir dir("spp");
+  const std::string script = dir.write("spp.lua", std::string(kSkyScene) + R"(
 local opt = torte.options{expected_spp = 16}
 local img = torte.render{scene = scene, camera = camera, width = 8, height = 8, spp = 16}
 assert(img.width == 8 and img.height == 8, "size")
@@ -401,8 +277,8 @@ assert(not pcall(img.pixel, img, 8, 0), "pixel outside the image")
 }
 
 TEST_CASE("cli: torte.save writes an EXR and a PNG beside it", "[cli]") {
-  TempDir dir("save");
-  const std::string script = dir.script("save.lua", R"(
+  CliDir dir("save");
+  const std::string script = dir.write("save.lua", R"(
 local opt = torte.options{output = "x.exr"}
 local scene = torte.scene()
 scene:add(torte.shape.sphere{radius = 1, material = torte.material.matte{color = {0.8, 0.3, 0.2}}})
@@ -440,16 +316,16 @@ assert(r > 0, "the sphere is lit")
 }
 
 TEST_CASE("cli: bad transforms are one error line", "[cli]") {
-  TempDir dir("render_error");
+  CliDir dir("render_error");
   const std::string prefix = std::string(kSkyScene) + "local settings = {scene = scene, camera = camera, width = 8, height = 8, spp = 1}\n";
   SECTION("a singular scale") {
-    const std::string script = dir.script("scale0.lua", prefix + "scene:add(torte.shape.cube{transform = torte.scale(0)})\n");
+    const std::string script = dir.write("scale0.lua", prefix + "scene:add(torte.shape.cube{transform = torte.scale(0)})\n");
     const std::string line = check_error(run(dir, {script}));
     CHECK_THAT(line, Catch::Contains(script + ":7:"));
     CHECK_THAT(line, Catch::Contains("non-zero"));
   }
   SECTION("a singular matrix") {
-    const std::string script = dir.script(
+    const std::string script = dir.write(
         "matrix.lua", prefix + "local m = torte.matrix{1, 0, 0, 0,  0, 0, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1}\n"
                                "scene:add(torte.shape.sphere{transform = m})\n"
                                "torte.render(settings)\n");
@@ -460,10 +336,10 @@ TEST_CASE("cli: bad transforms are one error line", "[cli]") {
 }
 
 TEST_CASE("cli: errors while rendering are one line", "[cli]") {
-  TempDir dir("render_error2");
+  CliDir dir("render_error2");
   const std::string prefix = std::string(kSkyScene) + "local settings = {scene = scene, camera = camera, width = 8, height = 8, spp = 1}\n";
   SECTION("an emitting mesh of zero area (found when the scene is built)") {
-    const std::string script = dir.script(
+    const std::string script = dir.write(
         "zero_area.lua",
         prefix + "scene:add(torte.shape.mesh{positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, indices = {0, 1, 2}, "
                  "emission = 1})\n"
@@ -474,7 +350,7 @@ TEST_CASE("cli: errors while rendering are one line", "[cli]") {
   }
   SECTION("a max_depth the renderer refuses") {
     const std::string script =
-        dir.script("depth.lua", prefix + "settings.max_depth = 20000\ntorte.render(settings)\n");
+        dir.write("depth.lua", prefix + "settings.max_depth = 20000\ntorte.render(settings)\n");
     const std::string line = check_error(run(dir, {script}));
     CHECK_THAT(line, Catch::Contains(script + ":8:"));
     CHECK_THAT(line, Catch::Contains("max_depth"));
@@ -482,29 +358,29 @@ TEST_CASE("cli: errors while rendering are one line", "[cli]") {
 }
 
 TEST_CASE("cli: bad torte.render settings name the key", "[cli]") {
-  TempDir dir("render_settings");
+  CliDir dir("render_settings");
   const std::string prefix = std::string(kSkyScene) + "local settings = {scene = scene, camera = camera, width = 8, height = 8, spp = 1}\n";
   SECTION("a bad integrator names the key") {
     const std::string script =
-        dir.script("integrator.lua", prefix + "settings.integrator = 'bidir'\ntorte.render(settings)\n");
+        dir.write("integrator.lua", prefix + "settings.integrator = 'bidir'\ntorte.render(settings)\n");
     const std::string line = check_error(run(dir, {script}));
     CHECK_THAT(line, Catch::Contains("'integrator'"));
     CHECK_THAT(line, Catch::Contains("bidir"));
   }
   SECTION("a missing camera names the key") {
     const std::string script =
-        dir.script("camera.lua", prefix + "settings.camera = nil\ntorte.render(settings)\n");
+        dir.write("camera.lua", prefix + "settings.camera = nil\ntorte.render(settings)\n");
     const std::string line = check_error(run(dir, {script}));
     CHECK_THAT(line, Catch::Contains("'camera'"));
   }
 }
 
 TEST_CASE("cli: Ctrl-C stops the render, writes the partial image and exits with 130", "[cli][sigint]") {
-  TempDir dir("sigint");
+  CliDir dir("sigint");
   const std::string output = dir / "partial.exr";
   // Far too many samples to finish: only Ctrl-C ends this render. The marker tells the test the render is
   // about to start (the signal handler is installed before the script runs).
-  const std::string script = dir.script("long.lua", R"(
+  const std::string script = dir.write("long.lua", R"(
 local opt = torte.options{output = "x.exr"}
 local scene = torte.scene()
 scene:add(torte.shape.sphere{radius = 1, material = torte.material.matte{color = 0.5}})
@@ -519,11 +395,7 @@ torte.save(img, opt.output)
 io.stdout:write("saved\n")
 )");
   Process p(dir, {"--quiet", script, "output=" + output});
-  const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  while (p.stdout_text().find("rendering") == std::string::npos && elapsed() < 20)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  REQUIRE(p.stdout_text().find("rendering") != std::string::npos);
+  REQUIRE(p.wait_for_stdout("rendering", 20));
   std::this_thread::sleep_for(std::chrono::milliseconds(1000));
   Result r;
   if (p.wait(0, &r)) FAIL("torte ended before Ctrl-C with code " << r.code << ", stderr: " << r.err);
@@ -544,8 +416,8 @@ io.stdout:write("saved\n")
 }
 
 TEST_CASE("cli: after Ctrl-C further renders are refused", "[cli][sigint]") {
-  TempDir dir("sigint_twice");
-  const std::string script = dir.script("twice.lua", std::string(kSkyScene) + R"(
+  CliDir dir("sigint_twice");
+  const std::string script = dir.write("twice.lua", std::string(kSkyScene) + R"(
 scene:add(torte.shape.sphere{radius = 1, transform = torte.translate(0, 0, 5), material = torte.material.matte{}})
 io.stdout:write("rendering\n")
 io.stdout:flush()
@@ -557,10 +429,7 @@ assert(not ok and err:find("interrupted"), "second render refused: " .. tostring
 io.stdout:write("refused\n")
 )");
   Process p(dir, {"--quiet", script});
-  const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  while (p.stdout_text().find("rendering") == std::string::npos && elapsed() < 20)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  p.wait_for_stdout("rendering", 20);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   p.send(SIGINT);
   Result r;
@@ -572,8 +441,8 @@ io.stdout:write("refused\n")
 }
 
 TEST_CASE("cli: scripts cannot reach the metatables of torte objects", "[cli]") {
-  TempDir dir("metatable");
-  const Result r = run(dir, {"--quiet", dir.script("mt.lua", R"(
+  CliDir dir("metatable");
+  const Result r = run(dir, {"--quiet", dir.write("mt.lua", R"(
 local s = torte.scene()
 assert(getmetatable(s) == "torte.scene", "metatable is hidden behind its name")
 local img = torte.render{scene = s, camera = torte.camera.perspective{}, width = 2, height = 2, spp = 1}
@@ -585,8 +454,8 @@ error("reached the end")
 }
 
 TEST_CASE("cli: torte.save reports a write failure at the calling line", "[cli]") {
-  TempDir dir("save_error");
-  const Result r = run(dir, {"--quiet", dir.script("save.lua", R"(
+  CliDir dir("save_error");
+  const Result r = run(dir, {"--quiet", dir.write("save.lua", R"(
 local s = torte.scene()
 local img = torte.render{scene = s, camera = torte.camera.perspective{}, width = 2, height = 2, spp = 1}
 torte.save(img, "/dev/null/cannot/x.exr")
@@ -594,4 +463,14 @@ torte.save(img, "/dev/null/cannot/x.exr")
   const std::string line = check_error(r);
   CHECK_THAT(line, Catch::Contains(":4:"));
   CHECK_THAT(line, !Catch::Contains("prelude"));
+}
+
+TEST_CASE("cli: a NaN in a transform is an error, not a silently black image", "[cli]") {
+  CliDir dir("nan_transform");
+  const std::string line = check_error(run(dir, {"--quiet", dir.write("nan.lua", R"(
+local s = torte.scene()
+s:add(torte.shape.sphere{radius = 1, transform = torte.translate(0 / 0, 0, 0)})
+)")}));
+  CHECK_THAT(line, Catch::Contains("nan.lua:3:"));
+  CHECK_THAT(line, Catch::Contains("finite"));
 }

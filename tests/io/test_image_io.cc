@@ -3,7 +3,6 @@
 #include <catch2/catch.hpp>
 
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -14,25 +13,15 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "film/image_io.h"
+#include "test_support.h"
 
 using namespace torte;
 namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh directory per test case and process (ctest may run test cases in parallel), removed afterwards.
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("torte_image_io_" + std::to_string(getpid()) + "_" + name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& file) const { return (path / file).string(); }
+struct ImageDir : test::TempDir {
+  explicit ImageDir(const std::string& name) : test::TempDir("image_io", name) {}
 };
 
 // Random pixels with each channel drawn from [lo, hi).
@@ -67,7 +56,7 @@ TEST_CASE("sRGB transfer functions", "[image_io]") {
 }
 
 TEST_CASE("EXR round trip is exact in 32-bit float", "[image_io]") {
-  TempDir dir("exr");
+  ImageDir dir("exr");
   Image img = random_image(7, 5, -3, 1000, 1);
   img.at(0, 0) = Rgb(1e-20f, 3.0e30f, -0.0f);
   const std::string path = dir / "out.exr";
@@ -79,7 +68,7 @@ TEST_CASE("EXR round trip is exact in 32-bit float", "[image_io]") {
 }
 
 TEST_CASE("HDR round trip is within 1% of each pixel's largest channel", "[image_io]") {
-  TempDir dir("hdr");
+  ImageDir dir("hdr");
   Image img(16, 8);
   Pcg32 rng(2);
   for (Rgb& p : img.pixels) {
@@ -108,7 +97,7 @@ TEST_CASE("HDR round trip is within 1% of each pixel's largest channel", "[image
 }
 
 TEST_CASE("PNG round trip is 8-bit sRGB, rounded to nearest", "[image_io]") {
-  TempDir dir("png");
+  ImageDir dir("png");
   Image img = random_image(19, 11, 0, 0.7f, 3);
   const std::string path = dir / "out.png";
   write_image(img, path);
@@ -126,7 +115,7 @@ TEST_CASE("PNG round trip is 8-bit sRGB, rounded to nearest", "[image_io]") {
 }
 
 TEST_CASE("TIFF, BMP and JPEG are written and read back as sRGB", "[image_io]") {
-  TempDir dir("display");
+  ImageDir dir("display");
   for (const char* file : {"out.tif", "out.bmp", "out.jpg"}) {
     INFO(file);
     const bool lossy = std::string(file) == "out.jpg";
@@ -146,7 +135,7 @@ TEST_CASE("TIFF, BMP and JPEG are written and read back as sRGB", "[image_io]") 
 }
 
 TEST_CASE("PNG exposure scales by 2^exposure before encoding and clamps", "[image_io]") {
-  TempDir dir("exposure");
+  ImageDir dir("exposure");
   Image img = random_image(9, 4, 0, 0.35f, 4);
   img.at(0, 0) = Rgb(0.6f, 5, -1);  // over and under range after exposure
   const std::string path = dir / "exposed.png";
@@ -159,7 +148,7 @@ TEST_CASE("PNG exposure scales by 2^exposure before encoding and clamps", "[imag
 }
 
 TEST_CASE("Non-finite pixels are written black to display formats", "[image_io]") {
-  TempDir dir("nan");
+  ImageDir dir("nan");
   Image img(3, 1);
   img.at(0, 0) = Rgb(std::nanf(""), 0.5f, 0.5f);
   img.at(1, 0) = Rgb(0.5f, std::numeric_limits<float>::infinity(), 0.5f);
@@ -173,7 +162,7 @@ TEST_CASE("Non-finite pixels are written black to display formats", "[image_io]"
 }
 
 TEST_CASE("Writing creates missing parent directories", "[image_io]") {
-  TempDir dir("parents");
+  ImageDir dir("parents");
   const std::string path = dir / "a/b/c/out.exr";
   write_image(Image(2, 2), path);
   CHECK(fs::is_regular_file(path));
@@ -181,7 +170,7 @@ TEST_CASE("Writing creates missing parent directories", "[image_io]") {
 }
 
 TEST_CASE("Writing fails with torte::Error naming the file", "[image_io]") {
-  TempDir dir("write_errors");
+  ImageDir dir("write_errors");
   const Image img(2, 2);
   SECTION("unknown extension") {
     const std::string path = dir / "new_dir/out.notaformat";
@@ -207,7 +196,7 @@ TEST_CASE("Writing fails with torte::Error naming the file", "[image_io]") {
 }
 
 TEST_CASE("Reading fails with torte::Error naming the file", "[image_io]") {
-  TempDir dir("read_errors");
+  ImageDir dir("read_errors");
   const std::string missing = dir / "missing.exr";
   CHECK_THROWS_AS(read_image(missing), Error);
   CHECK_THROWS_WITH(read_image(missing), Catch::Contains(missing));
@@ -225,7 +214,7 @@ TEST_CASE("Reading fails with torte::Error naming the file", "[image_io]") {
 }
 
 TEST_CASE("Reading replicates grey channels and drops alpha", "[image_io]") {
-  TempDir dir("channels");
+  ImageDir dir("channels");
   const auto write_raw = [](const std::string& path, int channels, OIIO::TypeDesc type, const void* data) {
     auto out = OIIO::ImageOutput::create(path);
     REQUIRE(out);

@@ -3,103 +3,24 @@
 // scenes/lucy-scale.lua at levels=0.
 #include <catch2/catch.hpp>
 
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <chrono>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
-extern char** environ;
+#include "test_support.h"
 
 namespace fs = std::filesystem;
+using namespace torte::test;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("torte_mesh_lua_" + std::to_string(getpid()) + "_" + name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& file) const { return (path / file).string(); }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string p = *this / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-};
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct Result {
-  int code = -1;  // exit code, -1 if killed by a signal
-  std::string out, err;
+struct MeshDir : TempDir {
+  explicit MeshDir(const std::string& name) : TempDir("mesh_lua", name) {}
 };
 
 // Runs torte with `args` in `dir` (its working directory, so relative paths resolve there).
 Result run(const TempDir& dir, const std::vector<std::string>& args, double timeout = 60) {
-  const std::string out_path = dir / "stdout.txt", err_path = dir / "stderr.txt";
-  std::vector<std::string> argv_s{TORTE_BINARY};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  const std::string cwd = dir.path.string();
-  // The child runs in `dir` (glibc >= 2.29 has this action).
-  posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, TORTE_BINARY, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  REQUIRE(rc == 0);
-  const auto start = std::chrono::steady_clock::now();
-  int status = 0;
-  while (waitpid(pid, &status, WNOHANG) != pid) {
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeout) {
-      kill(pid, SIGKILL);
-      waitpid(pid, nullptr, 0);
-      FAIL("torte did not finish within " << timeout << " s");
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  Result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = read_text(out_path);
-  r.err = read_text(err_path);
-  return r;
-}
-
-// Exit code 1 and exactly one stderr line "torte: error: ..."; returns it.
-std::string one_line_error(const Result& r) {
-  INFO("stderr: " << r.err);
-  CHECK(r.code == 1);
-  REQUIRE(!r.err.empty());
-  CHECK(r.err.find('\n') == r.err.size() - 1);
-  CHECK_THAT(r.err, Catch::StartsWith("torte: error: "));
-  return r.err.substr(0, r.err.size() - 1);
+  return run_torte(dir, args, timeout, dir.path.string());
 }
 
 // A closed octahedron (6 vertices, 8 triangles) as ascii PLY.
@@ -112,7 +33,7 @@ const char kOctaPly[] =
 }  // namespace
 
 TEST_CASE("mesh lua: load, subdivide, bounds and a tiny render", "[mesh_lua]") {
-  TempDir dir("render");
+  MeshDir dir("render");
   dir.write("octa.ply", kOctaPly);
   dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   const std::string script = dir.write("scene.lua", R"(
@@ -150,7 +71,7 @@ print("ok")
 }
 
 TEST_CASE("mesh lua: bad mesh files and arguments give one-line errors", "[mesh_lua]") {
-  TempDir dir("errors");
+  MeshDir dir("errors");
   dir.write("octa.ply", kOctaPly);
   std::string cut = kOctaPly;
   dir.write("cut.ply", cut.substr(0, cut.size() - 20));
@@ -167,7 +88,7 @@ TEST_CASE("mesh lua: bad mesh files and arguments give one-line errors", "[mesh_
   for (const Case& c : cases) {
     INFO(c.name);
     const std::string script = dir.write("bad.lua", "-- line 1\n" + c.code + "\n");
-    const std::string line = one_line_error(run(dir, {script}));
+    const std::string line = check_error(run(dir, {script}));
     CHECK_THAT(line, Catch::Contains(script + ":2:"));
     for (const std::string& e : c.expect) CHECK_THAT(line, Catch::Contains(e));
   }
@@ -202,7 +123,7 @@ TEST_CASE("mesh lua: scenes/lucy-scale.lua at levels=0", "[mesh_lua]") {
     WARN("skipped: " << data << " is absent (shared test data not installed)");
     return;
   }
-  TempDir dir("lucy");
+  MeshDir dir("lucy");
   const std::string output = dir / "lucy.exr";
   const Result r = run(dir, {"--quiet", std::string(TORTE_SOURCE_DIR) + "/scenes/lucy-scale.lua", "levels=0",
                              "width=16", "height=16", "spp=1", "output=" + output},

@@ -2,64 +2,25 @@
 // beside it; scene-specific arguments (integrator, camera) work and unknown arguments are rejected by name.
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "test_support.h"
+
 namespace fs = std::filesystem;
+using namespace torte::test;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("torte_scenes_" + std::to_string(getpid()) + "_" + name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& file) const { return (path / file).string(); }
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct Result {
-  int code = -1;  // exit code, or -1 if the process did not exit normally (e.g. it crashed)
-  std::string err;
+struct ScenesDir : TempDir {
+  explicit ScenesDir(const std::string& name) : TempDir("scenes", name) {}
 };
 
 // Runs torte with `args` from the source directory; stdout and stderr go to files in `dir`.
-Result run_torte(const TempDir& dir, const std::vector<std::string>& args) {
-  std::string cmd = "cd " + quote(TORTE_SOURCE_DIR) + " && " + quote(TORTE_BINARY);
-  for (const std::string& a : args) cmd += " " + quote(a);
-  const std::string err_path = dir / "stderr.txt";
-  cmd += " </dev/null >" + quote(dir / "stdout.txt") + " 2>" + quote(err_path);
-  const int status = std::system(cmd.c_str());
-  Result r;
-  if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-  r.err = read_file(err_path);
-  return r;
+Result run_in_source(const TempDir& dir, const std::vector<std::string>& args) {
+  return run_torte(dir, args, 600, TORTE_SOURCE_DIR);
 }
 
 std::vector<fs::path> scene_scripts() {
@@ -81,7 +42,7 @@ void check_renders(const TempDir& dir, const fs::path& scene, const std::vector<
   args.insert(args.end(), kTiny.begin(), kTiny.end());
   args.insert(args.end(), extra.begin(), extra.end());
   args.push_back("output=" + exr);
-  const Result r = run_torte(dir, args);
+  const Result r = run_in_source(dir, args);
   INFO("scene " << scene << ", stderr: " << r.err);
   CHECK(r.code == 0);
   CHECK(r.err.empty());  // --quiet, no warnings (e.g. no NaN/Inf samples dropped)
@@ -97,14 +58,14 @@ void check_renders(const TempDir& dir, const fs::path& scene, const std::vector<
 namespace {
 
 void renders_tiny(const fs::path& scene) {
-  TempDir dir("tiny_" + scene.stem().string());
+  ScenesDir dir("tiny_" + scene.stem().string());
   check_renders(dir, scene, {});
 }
 
 void rejects_unknown_argument(const fs::path& scene) {
-  TempDir dir("unknown_" + scene.stem().string());
+  ScenesDir dir("unknown_" + scene.stem().string());
   const std::string exr = dir / "never.exr";
-  const Result r = run_torte(dir, {"--quiet", scene.string(), "width=32", "widht=3", "output=" + exr});
+  const Result r = run_in_source(dir, {"--quiet", scene.string(), "width=32", "widht=3", "output=" + exr});
   INFO("stderr: " << r.err);
   CHECK(r.code == 1);
   CHECK_THAT(r.err, Catch::StartsWith("torte: error: "));
@@ -156,25 +117,25 @@ TEST_CASE("scenes: the scenes directory holds the expected scenes", "[scenes]") 
 }
 
 TEST_CASE("scenes: the Cornell box with the direct-lighting integrator", "[scenes]") {
-  TempDir dir("cornell_direct");
+  ScenesDir dir("cornell_direct");
   check_renders(dir, fs::path(TORTE_SOURCE_DIR) / "scenes" / "cornell-box.lua", {"integrator=direct"});
 }
 
 TEST_CASE("scenes: shapes.lua and lights.lua with direct lighting", "[scenes]") {
-  TempDir dir("direct");
+  ScenesDir dir("direct");
   const fs::path scenes = fs::path(TORTE_SOURCE_DIR) / "scenes";
   SECTION("shapes") { check_renders(dir, scenes / "shapes.lua", {"integrator=direct", "max_depth=1"}); }
   SECTION("lights") { check_renders(dir, scenes / "lights.lua", {"integrator=direct"}); }
 }
 
 TEST_CASE("scenes: the camera argument of lights.lua", "[scenes]") {
-  TempDir dir("camera");
+  ScenesDir dir("camera");
   const fs::path scenes = fs::path(TORTE_SOURCE_DIR) / "scenes";
   SECTION("orthographic") { check_renders(dir, scenes / "lights.lua", {"camera=orthographic"}); }
   SECTION("perspective") { check_renders(dir, scenes / "lights.lua", {"camera=perspective"}); }
   SECTION("lights, an unknown camera is rejected naming the argument") {
-    const Result r = run_torte(dir, {"--quiet", (scenes / "lights.lua").string(), "camera=fisheye",
-                                     "output=" + (dir / "never.exr")});
+    const Result r = run_in_source(dir, {"--quiet", (scenes / "lights.lua").string(), "camera=fisheye",
+                                         "output=" + (dir / "never.exr")});
     INFO("stderr: " << r.err);
     CHECK(r.code == 1);
     CHECK_THAT(r.err, Catch::StartsWith("torte: error: "));
