@@ -4,9 +4,10 @@
 // none of them hits it, and hit children are visited in order of the smallest entry distance among their rays.
 // Each stack entry carries the lanes that hit its box, so lane groups without such rays are skipped below it.
 // Leaves: one triangle at a time against all lanes, with the watertight test of traverse-inl.h.
-// Any hit only: children are visited in any order (no entry distances computed); in a same-octant packet the
-// node's children are first tested against the packet's interval of origins / inverse directions (one vector test
-// for all N children, Reshetov et al. 2005) and only the survivors lane by lane; and once an entry holds few live
+// In a same-octant packet the node's children are first tested against the packet's interval of origins / inverse
+// directions (one vector test for all N children, Reshetov et al. 2005) and only the survivors lane by lane; the
+// interval's far bound is the largest t_max of the packet, which closest hit lowers as its lanes find hits.
+// Any hit only: children are visited in any order (no entry distances computed); and once an entry holds few live
 // rays (kSingleThreshold) its subtree is traced one ray at a time with the single-ray kernel's tests (Benthin et
 // al. 2012).
 // Rays that are done (invalid input, padding past `count`, occluded in an any-hit query) get t_max = -inf, which
@@ -96,6 +97,13 @@ HWY_INLINE void SetupPacket(Packet<P>& p, const RaySoA& rays, size_t begin, size
   }
   const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   p.valid = 0;
+  // Per-axis lane bits (lane i -> bit i) of the direction signs and of the permutation, and the interval bounds
+  // over the valid lanes, gathered as the lane groups go by.
+  uint32_t neg_bits[3] = {0, 0, 0}, axis_bits[3][2] = {{0, 0}, {0, 0}, {0, 0}}, inf_bits[3] = {0, 0, 0};
+  const auto pinf = hn::Set(d, kInfinity), ninf = hn::Set(d, -kInfinity);
+  hn::Vec<decltype(d)> o_lo[3] = {pinf, pinf, pinf}, o_hi[3] = {ninf, ninf, ninf};
+  hn::Vec<decltype(d)> i_lo[3] = {pinf, pinf, pinf}, i_hi[3] = {ninf, ninf, ninf};
+  auto t_hi = ninf;
   for (size_t g = 0; g < P; g += L) {
     auto ox = hn::LoadU(d, src[0] + g), oy = hn::LoadU(d, src[1] + g), oz = hn::LoadU(d, src[2] + g);
     auto dx = hn::LoadU(d, src[3] + g), dy = hn::LoadU(d, src[4] + g), dz = hn::LoadU(d, src[5] + g);
@@ -114,9 +122,23 @@ HWY_INLINE void SetupPacket(Packet<P>& p, const RaySoA& rays, size_t begin, size
     hn::Store(t_max, d, p.t_max + g);
     const auto ix = hn::Div(one, dx), iy = hn::Div(one, dy), iz = hn::Div(one, dz);
     hn::Store(ix, d, p.ix + g), hn::Store(iy, d, p.iy + g), hn::Store(iz, d, p.iz + g);
-    hn::Store(hn::VecFromMask(d, hn::Lt(ix, zero)), d, p.neg[0] + g);  // as SlabRay: by the sign of 1 / d
-    hn::Store(hn::VecFromMask(d, hn::Lt(iy, zero)), d, p.neg[1] + g);
-    hn::Store(hn::VecFromMask(d, hn::Lt(iz, zero)), d, p.neg[2] + g);
+    const auto neg_x = hn::Lt(ix, zero), neg_y = hn::Lt(iy, zero), neg_z = hn::Lt(iz, zero);
+    hn::Store(hn::VecFromMask(d, neg_x), d, p.neg[0] + g);  // as SlabRay: by the sign of 1 / d
+    hn::Store(hn::VecFromMask(d, neg_y), d, p.neg[1] + g);
+    hn::Store(hn::VecFromMask(d, neg_z), d, p.neg[2] + g);
+    neg_bits[0] |= MaskBits(d, neg_x) << g, neg_bits[1] |= MaskBits(d, neg_y) << g;
+    neg_bits[2] |= MaskBits(d, neg_z) << g;
+    if constexpr (kIntervals) {  // bounds over the valid lanes only
+      const hn::Vec<decltype(d)> o[3] = {ox, oy, oz}, inv[3] = {ix, iy, iz};
+      for (int k = 0; k < 3; ++k) {
+        o_lo[k] = hn::Min(o_lo[k], hn::IfThenElse(valid, o[k], pinf));
+        o_hi[k] = hn::Max(o_hi[k], hn::IfThenElse(valid, o[k], ninf));
+        i_lo[k] = hn::Min(i_lo[k], hn::IfThenElse(valid, inv[k], pinf));
+        i_hi[k] = hn::Max(i_hi[k], hn::IfThenElse(valid, inv[k], ninf));
+        inf_bits[k] |= MaskBits(d, hn::AndNot(hn::IsFinite(inv[k]), valid)) << g;
+      }
+      t_hi = hn::Max(t_hi, t_max);  // invalid lanes hold -inf
+    }
     // WatertightRay: kz = max_dimension(|d|) (x > y ? (x > z ? 0 : 2) : (y > z ? 1 : 2)), kx = kz + 1,
     // ky = kx + 1 (mod 3), kx and ky swapped when d[kz] < 0.
     const auto ax = hn::Abs(dx), ay = hn::Abs(dy), az = hn::Abs(dz);
@@ -137,52 +159,35 @@ HWY_INLINE void SetupPacket(Packet<P>& p, const RaySoA& rays, size_t begin, size
     hn::Store(Pick(kz0, kz1, ox, oy, oz), d, p.okz + g);
     const hn::Mask<decltype(d)> axis_is[3][2] = {{kx0, kx1}, {ky0, ky1}, {kz0, kz1}};
     for (int k = 0; k < 3; ++k)
-      for (int a = 0; a < 2; ++a) hn::Store(hn::VecFromMask(d, axis_is[k][a]), d, p.axis_is[k][a] + g);
+      for (int a = 0; a < 2; ++a) {
+        hn::Store(hn::VecFromMask(d, axis_is[k][a]), d, p.axis_is[k][a] + g);
+        axis_bits[k][a] |= MaskBits(d, axis_is[k][a]) << g;
+      }
     hn::Store(zero, d, p.b1 + g), hn::Store(zero, d, p.b2 + g);
   }
   for (size_t i = 0; i < P; ++i) p.prim[i] = kNoHit;
   if (p.valid == 0) return;
   // Shared octant / permutation: every valid lane agrees with the first one.
-  const int lead = __builtin_ctz(p.valid);
-  auto bit = [&](const float* mask, int i) { return std::bit_cast<uint32_t>(mask[i]) != 0; };
-  auto uniform = [&](const float* mask) {
-    bool all = true, none = true;
-    for (uint32_t v = p.valid; v != 0; v &= v - 1) {
-      const bool b = bit(mask, __builtin_ctz(v));
-      all &= b, none &= !b;
-    }
-    return all || none;
-  };
+  const uint32_t valid = p.valid, lead = valid & (0u - valid);
+  auto uniform = [valid](uint32_t bits) { return (bits & valid) == 0 || (bits & valid) == valid; };
   p.same_octant = p.same_axes = true;
   for (int k = 0; k < 3; ++k) {
-    const bool neg = bit(p.neg[k], lead);
+    const bool neg = (neg_bits[k] & lead) != 0;
     p.near_off[k] = bound_offset<N>(k, neg);
     p.far_off[k] = bound_offset<N>(k, !neg);
-    p.axes[k] = bit(p.axis_is[k][0], lead) ? 0 : bit(p.axis_is[k][1], lead) ? 1 : 2;
-    p.same_octant &= uniform(p.neg[k]);
-    p.same_axes &= uniform(p.axis_is[k][0]) && uniform(p.axis_is[k][1]);
+    p.axes[k] = (axis_bits[k][0] & lead) ? 0 : (axis_bits[k][1] & lead) ? 1 : 2;
+    p.same_octant &= uniform(neg_bits[k]);
+    p.same_axes &= uniform(axis_bits[k][0]) && uniform(axis_bits[k][1]);
   }
   p.interval_axes = 0;
   p.t_hi = -kInfinity;
-  if (!kIntervals || !p.same_octant) return;  // interval culling: any hit, same-octant packets only
-  const float* o[3] = {p.ox, p.oy, p.oz};
-  const float* inv[3] = {p.ix, p.iy, p.iz};
+  if (!kIntervals || !p.same_octant) return;  // interval culling: same-octant packets only
   for (int k = 0; k < 3; ++k) {
-    float olo = kInfinity, ohi = -kInfinity, ilo = kInfinity, ihi = -kInfinity;
-    bool finite = true;
-    for (uint32_t v = p.valid; v != 0; v &= v - 1) {
-      const int i = __builtin_ctz(v);
-      olo = o[k][i] < olo ? o[k][i] : olo, ohi = o[k][i] > ohi ? o[k][i] : ohi;
-      ilo = inv[k][i] < ilo ? inv[k][i] : ilo, ihi = inv[k][i] > ihi ? inv[k][i] : ihi;
-      finite &= std::isfinite(inv[k][i]);
-    }
-    p.o_lo[k] = olo, p.o_hi[k] = ohi, p.i_lo[k] = ilo, p.i_hi[k] = ihi;
-    if (finite) p.interval_axes |= 1u << k;
+    p.o_lo[k] = hn::GetLane(hn::MinOfLanes(d, o_lo[k])), p.o_hi[k] = hn::GetLane(hn::MaxOfLanes(d, o_hi[k]));
+    p.i_lo[k] = hn::GetLane(hn::MinOfLanes(d, i_lo[k])), p.i_hi[k] = hn::GetLane(hn::MaxOfLanes(d, i_hi[k]));
+    if (inf_bits[k] == 0) p.interval_axes |= 1u << k;
   }
-  for (uint32_t v = p.valid; v != 0; v &= v - 1) {
-    const int i = __builtin_ctz(v);
-    p.t_hi = p.t_max[i] > p.t_hi ? p.t_max[i] : p.t_hi;
-  }
+  p.t_hi = hn::GetLane(hn::MaxOfLanes(d, t_hi));
 }
 
 template <class D>
@@ -243,7 +248,7 @@ HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, 
     const auto neg_y = hn::MaskFromVec(hn::Load(d, p.neg[1] + g));
     const auto neg_z = hn::MaskFromVec(hn::Load(d, p.neg[2] + g));
     for (int c = 0; c < N; ++c) {
-      if (node.child[c] == kEmptyChild || (kAny && !((cand >> c) & 1))) continue;
+      if (node.child[c] == kEmptyChild || !((cand >> c) & 1)) continue;
       hn::Vec<decltype(d)> nx, ny, nz, fx, fy, fz;
       if (p.same_octant) {  // near/far planes picked once for the packet
         nx = hn::Set(d, nf[p.near_off[0] + c]), ny = hn::Set(d, nf[p.near_off[1] + c]);
@@ -374,6 +379,16 @@ HWY_INLINE uint32_t LiveLanes(const Packet<P>& p, uint32_t lanes) {
   uint32_t live = 0;
   for (size_t g = 0; g < P; g += L) live |= MaskBits(d, hn::Gt(hn::Load(d, p.t_max + g), hn::Zero(d))) << g;
   return live & lanes;
+}
+
+// Largest t_max over the packet's lanes (done lanes hold -inf): the far bound of the interval test.
+template <size_t P>
+HWY_INLINE float MaxT(const Packet<P>& p) {
+  const hn::CappedTag<float, P> d;
+  const size_t L = hn::Lanes(d);
+  auto m = hn::Load(d, p.t_max);
+  for (size_t g = L; g < P; g += L) m = hn::Max(m, hn::Load(d, p.t_max + g));
+  return hn::GetLane(hn::MaxOfLanes(d, m));
 }
 
 // Lanes among `lanes` whose closest hit so far is not nearer than t.
@@ -528,13 +543,19 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
       if (LiveLanes(p, p.valid) == 0) return;
     } else if (ref & kLeafFlag) {
       // Any hit: stop once every ray is occluded.
-      if (PacketLeaf<kAny>(tris, ref & ~kLeafFlag, count, lanes, p) && kAny && LiveLanes(p, p.valid) == 0) return;
+      if (PacketLeaf<kAny>(tris, ref & ~kLeafFlag, count, lanes, p)) {
+        if constexpr (kAny) {
+          if (LiveLanes(p, p.valid) == 0) return;
+        } else if (p.same_octant) {
+          p.t_hi = MaxT(p);  // closest hit: the interval's far bound follows the shrinking t_max
+        }
+      }
     } else {
       const WideNode<N>& node = bvh.nodes[ref];
       uint32_t child_lanes[N];
       float t_near[N];
       uint32_t cand = ~0u;
-      if (kAny && p.same_octant) cand = IntervalChildren(node, p);
+      if (p.same_octant) cand = IntervalChildren(node, p);
       uint32_t bits = cand == 0 ? 0 : PacketChildren<kAny>(node, p, lanes, cand, child_lanes, t_near);
       if (bits != 0) {
         if constexpr (kAny) {
@@ -590,7 +611,7 @@ void ClosestPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const Ray
   Packet<P> p;
   for (size_t begin = 0; begin < count; begin += P) {
     const size_t n = count - begin < P ? count - begin : P;
-    SetupPacket<N, false>(p, rays, begin, n);
+    SetupPacket<N, true>(p, rays, begin, n);
     if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, false>(bvh, tris, p);
     for (size_t i = 0; i < n; ++i)
       hits[begin + i] = p.prim[i] == kNoHit ? Hit{} : Hit{p.t_max[i], p.prim[i], p.b1[i], p.b2[i]};

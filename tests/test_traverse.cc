@@ -434,6 +434,43 @@ TEST_CASE("packets sharing a direction with zero components, spread origins (int
   });
 }
 
+TEST_CASE("closest-hit packets culled by a shrinking interval still reach the far layers", "[traverse]") {
+  // Four layers of unit squares at z = 0, 1, 2, 3 with holes in different cells of each layer; packets share one
+  // direction (one octant) so closest-hit packets use interval culling, whose far bound follows the packet's
+  // largest t_max as lanes find hits. Rays falling through the holes of the near layers must still find the
+  // far ones, and rays hitting a near layer must not report a farther one. Expected: brute force.
+  Soup soup;
+  for (int k = 0; k < 4; ++k)
+    for (int x = -4; x < 4; ++x)
+      for (int y = -4; y < 4; ++y) {
+        // Holes: even x in layer 0, even y in layer 1, x % 4 in {0, 1} in layer 2, y % 4 in {2, 3} in layer 3;
+        // about 1/2, 1/4, 1/8 of the rays reach layers 1, 2, 3.
+        const bool hole = k == 0 ? (x & 1) == 0 : k == 1 ? (y & 1) == 0 : k == 2 ? (x & 2) == 0 : (y & 2) != 0;
+        if (hole) continue;
+        const float z = float(k), x0 = float(x), y0 = float(y);
+        const Soup q = soup_of(make_polygon({{x0, y0, z}, {x0 + 1, y0, z}, {x0 + 1, y0 + 1, z}, {x0, y0 + 1, z}}));
+        soup.insert(soup.end(), q.begin(), q.end());
+      }
+  Rays rays;
+  const Vec3f dirs[] = {{0, 0, 1}, {0.05f, 0.03f, 1}, {-0.04f, 0.02f, 1}, {0.03f, -0.06f, 1}};
+  for (Vec3f d : dirs)
+    for (int i = 0; i < 29; ++i)
+      for (int j = 0; j < 29; ++j) {
+        const float a = -3.9f + 0.27f * i, b = -3.9f + 0.27f * j;
+        rays.add({a, b, -1.0f}, d, (i + j) % 5 == 0 ? 2.5f : kInfinity);
+      }
+  const Expected e = expect_brute(soup, rays);
+  size_t far_hits = 0;
+  for (const Hit& h : e.hits) far_hits += h.prim != kNoHit && h.t > 2.5f;
+  REQUIRE(far_hits > rays.size() / 20);
+  const Tree<4> t4 = build<4>(soup);
+  const Tree<8> t8 = build<8>(soup);
+  for_each_target([&](const std::string&, bool) {
+    check_all_modes(t4, soup, rays, e, rays.size(), rays.size());
+    check_all_modes(t8, soup, rays, e, rays.size(), rays.size());
+  });
+}
+
 TEST_CASE("directions whose largest components tie choose the scalar test's axes", "[traverse]") {
   // |dx| = |dy| > |dz| and the like: the watertight test's axis choice (max_dimension, strict >) decides these
   // ties, and another choice shears differently and changes t in its last bits, which same_hit detects. The
