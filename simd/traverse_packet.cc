@@ -38,6 +38,7 @@
 #include <hwy/highway.h>
 
 #include "traverse-inl.h"
+#include "traverse_single-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace torte::HWY_NAMESPACE {
@@ -406,123 +407,6 @@ HWY_INLINE uint32_t LanesReaching(const Packet<P>& p, uint32_t lanes, float t) {
 template <size_t P>
 constexpr int kSingleThreshold = P == 16 ? 6 : 3;
 
-// ---- Single-ray any-hit traversal of a subtree, for packets with few live lanes (Benthin et al. 2012) ----
-// The same tests as the single-ray kernel of traverse.cc: lanes = children in nodes, lanes = triangles in leaves.
-struct LaneRay {
-  WatertightRay wr;
-  float o[3], inv_d[3];
-  uint32_t near_off[3], far_off[3];
-  const float* verts[9];
-  template <int N>
-  LaneRay(const Ray& ray, const TriangleLeaves& tris, std::integral_constant<int, N>) : wr(ray) {
-    for (int a = 0; a < 3; ++a) {
-      o[a] = ray.o[a];
-      inv_d[a] = 1.0f / ray.d[a];
-      const bool neg = inv_d[a] < 0;
-      near_off[a] = bound_offset<N>(a, neg);
-      far_off[a] = bound_offset<N>(a, !neg);
-    }
-    const float* const v[3][3] = {{tris.v0x.data(), tris.v0y.data(), tris.v0z.data()},
-                                  {tris.v1x.data(), tris.v1y.data(), tris.v1z.data()},
-                                  {tris.v2x.data(), tris.v2y.data(), tris.v2z.data()}};
-    for (int k = 0; k < 3; ++k) {
-      verts[3 * k + 0] = v[k][wr.kx];
-      verts[3 * k + 1] = v[k][wr.ky];
-      verts[3 * k + 2] = v[k][wr.kz];
-    }
-  }
-};
-
-template <int N>
-HWY_INLINE uint32_t LaneChildren(const WideNode<N>& node, const LaneRay& r, float t_max) {
-  const hn::CappedTag<float, N> d;
-  const size_t L = hn::Lanes(d);
-  const float* nf = node_floats(node);
-  const auto ox = hn::Set(d, r.o[0]), oy = hn::Set(d, r.o[1]), oz = hn::Set(d, r.o[2]);
-  const auto ix = hn::Set(d, r.inv_d[0]), iy = hn::Set(d, r.inv_d[1]), iz = hn::Set(d, r.inv_d[2]);
-  const auto round = hn::Set(d, kFarRound);
-  uint32_t bits = 0;
-  for (size_t g = 0; g < size_t(N); g += L) {
-    const auto tx0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[0] + g), ox), ix);
-    const auto ty0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[1] + g), oy), iy);
-    const auto tz0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[2] + g), oz), iz);
-    const auto tx1 = hn::Mul(hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[0] + g), ox), ix), round);
-    const auto ty1 = hn::Mul(hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[1] + g), oy), iy), round);
-    const auto tz1 = hn::Mul(hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[2] + g), oz), iz), round);
-    // NaN slabs ignored: accumulator second (see traverse.cc).
-    const auto t0 = hn::Max(tz0, hn::Max(ty0, hn::Max(tx0, hn::Zero(d))));
-    const auto t1 = hn::Min(tz1, hn::Min(ty1, hn::Min(tx1, hn::Set(d, t_max))));
-    bits |= MaskBits(d, hn::Le(t0, t1)) << g;
-  }
-  return bits;
-}
-
-// Any hit among leaf triangles [first, first + count) for one ray (lanes = triangles).
-HWY_INLINE bool LaneLeafAny(const TriangleLeaves& tris, uint32_t first, uint32_t count, const LaneRay& r,
-                            float t_max) {
-  const hn::CappedTag<float, 8> d;
-  const size_t L = hn::Lanes(d);
-  const WatertightRay& wr = r.wr;
-  const auto okx = hn::Set(d, wr.o[wr.kx]), oky = hn::Set(d, wr.o[wr.ky]), okz = hn::Set(d, wr.o[wr.kz]);
-  const auto sx = hn::Set(d, wr.sx), sy = hn::Set(d, wr.sy), sz = hn::Set(d, wr.sz);
-  const auto tm = hn::Set(d, t_max);
-  for (uint32_t i = 0; i < count; i += uint32_t(L)) {
-    const size_t at = size_t(first) + i;  // full vectors stay within the kLeafPadding tail
-    const auto* v = r.verts;
-    const auto lanes = WatertightTest(
-        d, hn::Sub(hn::LoadU(d, v[0] + at), okx), hn::Sub(hn::LoadU(d, v[1] + at), oky),
-        hn::Sub(hn::LoadU(d, v[2] + at), okz), hn::Sub(hn::LoadU(d, v[3] + at), okx),
-        hn::Sub(hn::LoadU(d, v[4] + at), oky), hn::Sub(hn::LoadU(d, v[5] + at), okz),
-        hn::Sub(hn::LoadU(d, v[6] + at), okx), hn::Sub(hn::LoadU(d, v[7] + at), oky),
-        hn::Sub(hn::LoadU(d, v[8] + at), okz), sx, sy, sz, tm, hn::FirstN(d, count - i));
-    if (!hn::AllFalse(d, lanes.hit)) return true;
-    if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero))) {
-      for (uint32_t bits = MaskBits(d, lanes.zero); bits != 0; bits &= bits - 1) {
-        const size_t j = at + size_t(__builtin_ctz(bits));
-        TriangleHit th;
-        if (intersect_triangle(wr, t_max, {tris.v0x[j], tris.v0y[j], tris.v0z[j]},
-                               {tris.v1x[j], tris.v1y[j], tris.v1z[j]}, {tris.v2x[j], tris.v2y[j], tris.v2z[j]},
-                               &th))
-          return true;
-      }
-    }
-  }
-  return false;
-}
-
-// Whether anything in the subtree at (ref, count) blocks the ray in (0, t_max).
-template <int N>
-HWY_NOINLINE bool LaneAny(const WideBvh<N>& bvh, const TriangleLeaves& tris, const LaneRay& r, float t_max,
-                          uint32_t ref, uint32_t count) {
-  struct Entry {
-    uint32_t ref, count;
-  };
-  Entry stack[kMaxWideDepth * (N - 1) + 1];
-  int sp = 0;
-  for (;;) {
-    if (ref & kLeafFlag) {
-      if (LaneLeafAny(tris, ref & ~kLeafFlag, count, r, t_max)) return true;
-    } else {
-      const WideNode<N>& node = bvh.nodes[ref];
-      uint32_t bits = LaneChildren(node, r, t_max);
-      if (bits != 0) {
-        const uint32_t first = uint32_t(__builtin_ctz(bits));
-        for (bits &= bits - 1; bits != 0; bits &= bits - 1) {
-          const uint32_t c = uint32_t(__builtin_ctz(bits));
-          stack[sp++] = {node.child[c], node.leaf_count[c]};
-        }
-        ref = node.child[first];
-        count = node.leaf_count[first];
-        continue;
-      }
-    }
-    if (sp == 0) return false;
-    --sp;
-    ref = stack[sp].ref;
-    count = stack[sp].count;
-  }
-}
-
 template <int N, size_t P, bool kAny>
 void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p) {
   struct Entry {
@@ -537,8 +421,8 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
       // Few rays left here: one at a time is cheaper than a mostly empty packet.
       for (uint32_t b = lanes; b != 0; b &= b - 1) {
         const size_t i = size_t(__builtin_ctz(b));
-        const LaneRay r(p.ray(i), tris, std::integral_constant<int, N>());
-        if (LaneAny<N>(bvh, tris, r, p.t_max[i], ref, count)) p.t_max[i] = -kInfinity;
+        const SingleRay r(p.ray(i), tris, std::integral_constant<int, N>());
+        if (TraceRay<N, true>(bvh, tris, r, p.t_max[i], nullptr, ref, count)) p.t_max[i] = -kInfinity;
       }
       if (LiveLanes(p, p.valid) == 0) return;
     } else if (ref & kLeafFlag) {

@@ -1,0 +1,230 @@
+// Single-ray traversal of WideBvh<N> + TriangleLeaves, per Highway target: the kernel of traverse.cc, also used
+// by traverse_packet.cc for subtrees where too few rays of a packet stay active. Include it after
+// traverse-inl.h inside a file compiled with foreach_target and without FMA contraction (see traverse.cc).
+// Nodes: lanes = children. One slab test per axis covers all N children (CappedTag<float, N>; targets narrower
+// than N loop over lane groups); near/far planes are picked per ray by the direction's signs, so the node test is
+// the same arithmetic as SlabRay::hits in accel/bvh2.h. Hit children are sorted far to near and pushed, and the
+// nearest is visited next; popped entries starting beyond the closest hit so far are skipped.
+// Leaves: lanes = triangles, loaded straight from the SoA leaf arrays (LoadU + FirstN), with the watertight test
+// of traverse-inl.h; lanes where an edge function is exactly 0 are re-tested by the scalar intersect_triangle,
+// which falls back to double precision there.
+
+// Per-target include guard (Highway's pattern).
+#if defined(TORTE_SIMD_TRAVERSE_SINGLE_INL_H_TARGET) == defined(HWY_TARGET_TOGGLE)
+#ifdef TORTE_SIMD_TRAVERSE_SINGLE_INL_H_TARGET
+#undef TORTE_SIMD_TRAVERSE_SINGLE_INL_H_TARGET
+#else
+#define TORTE_SIMD_TRAVERSE_SINGLE_INL_H_TARGET
+#endif
+
+#include <hwy/highway.h>
+
+#include <cstdint>
+#include <type_traits>
+
+#include "accel/hit.h"
+#include "accel/wide_bvh.h"
+#include "geometry/triangle.h"
+#include "traverse-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace torte::HWY_NAMESPACE {
+namespace {
+
+using traverse_detail::bound_offset;
+using traverse_detail::kFarRound;
+using traverse_detail::kMaxWideDepth;
+using traverse_detail::node_floats;
+
+// Everything about one ray that the kernels reuse at every node and leaf.
+struct SingleRay {
+  WatertightRay wr;              // permutation kx, ky, kz and shear sx, sy, sz, exactly as the scalar test has them
+  float o[3], inv_d[3];
+  uint32_t near_off[3], far_off[3];  // per axis, offset of the entry / exit plane array in a node (node_floats)
+  const float* verts[9];             // leaf arrays v0[kx], v0[ky], v0[kz], v1[kx], ..., v2[kz]
+
+  template <int N>
+  SingleRay(const Ray& ray, const TriangleLeaves& tris, std::integral_constant<int, N>) : wr(ray) {
+    for (int a = 0; a < 3; ++a) {
+      o[a] = ray.o[a];
+      inv_d[a] = 1.0f / ray.d[a];
+      const bool neg = inv_d[a] < 0;  // as SlabRay: -0 gives -inf, i.e. "negative"
+      near_off[a] = bound_offset<N>(a, neg);
+      far_off[a] = bound_offset<N>(a, !neg);
+    }
+    const float* const v[3][3] = {{tris.v0x.data(), tris.v0y.data(), tris.v0z.data()},
+                                  {tris.v1x.data(), tris.v1y.data(), tris.v1z.data()},
+                                  {tris.v2x.data(), tris.v2y.data(), tris.v2z.data()}};
+    for (int k = 0; k < 3; ++k) {
+      verts[3 * k + 0] = v[k][wr.kx];
+      verts[3 * k + 1] = v[k][wr.ky];
+      verts[3 * k + 2] = v[k][wr.kz];
+    }
+  }
+};
+
+// Slab test of all N children of `node`. Returns the hit children as bits and their entry distances in t_near.
+template <int N>
+HWY_INLINE uint32_t IntersectChildren(const WideNode<N>& node, const SingleRay& r, float t_max, float* t_near) {
+  const hn::CappedTag<float, N> d;
+  const size_t L = hn::Lanes(d);
+  const float* nf = node_floats(node);
+  const auto ox = hn::Set(d, r.o[0]), oy = hn::Set(d, r.o[1]), oz = hn::Set(d, r.o[2]);
+  const auto ix = hn::Set(d, r.inv_d[0]), iy = hn::Set(d, r.inv_d[1]), iz = hn::Set(d, r.inv_d[2]);
+  const auto round = hn::Set(d, kFarRound);
+  uint32_t bits = 0;
+  for (size_t g = 0; g < size_t(N); g += L) {
+    const auto tx0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[0] + g), ox), ix);
+    const auto ty0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[1] + g), oy), iy);
+    const auto tz0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[2] + g), oz), iz);
+    const auto tx1 = hn::Mul(hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[0] + g), ox), ix), round);
+    const auto ty1 = hn::Mul(hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[1] + g), oy), iy), round);
+    const auto tz1 = hn::Mul(hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[2] + g), oz), iz), round);
+    // A ray lying in a slab plane gives 0 * inf = NaN there; that slab must not constrain the interval (as in
+    // SlabRay). Max(x, acc) / Min(x, acc) return acc when x is NaN on every target (x86 min/max return their
+    // second operand, HWY_SCALAR the non-NaN one), so keep the accumulator second.
+    const auto t0 = hn::Max(tz0, hn::Max(ty0, hn::Max(tx0, hn::Zero(d))));
+    const auto t1 = hn::Min(tz1, hn::Min(ty1, hn::Min(tx1, hn::Set(d, t_max))));
+    hn::StoreU(t0, d, t_near + g);
+    bits |= MaskBits(d, hn::Le(t0, t1)) << g;
+  }
+  return bits;
+}
+
+// Lanes of a leaf group whose edge functions hit exactly 0: the scalar test decides them (in double).
+template <bool kAny, class D>
+HWY_NOINLINE bool RetestZeroLanesSingle(D d, hn::Mask<D> zero, const TriangleLeaves& tris, size_t at,
+                                  const WatertightRay& wr, float* t_max, Hit* hit) {
+  bool found = false;
+  for (uint32_t bits = MaskBits(d, zero); bits != 0; bits &= bits - 1) {
+    const size_t i = at + size_t(__builtin_ctz(bits));
+    TriangleHit th;
+    if (!intersect_triangle(wr, *t_max, {tris.v0x[i], tris.v0y[i], tris.v0z[i]},
+                            {tris.v1x[i], tris.v1y[i], tris.v1z[i]}, {tris.v2x[i], tris.v2y[i], tris.v2z[i]}, &th))
+      continue;
+    if constexpr (kAny) return true;
+    *t_max = th.t;
+    *hit = {th.t, uint32_t(i), th.b1, th.b2};
+    found = true;
+  }
+  return found;
+}
+
+// Tests leaf triangles [first, first + count) (lanes = triangles). Closest hit: shrinks *t_max and fills *hit
+// with the closest hit closer than *t_max. Any hit: returns at the first hit.
+template <bool kAny>
+HWY_INLINE bool IntersectLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t count, const SingleRay& r,
+                              float* t_max, Hit* hit) {
+  const hn::CappedTag<float, 8> d;
+  const size_t L = hn::Lanes(d);
+  const WatertightRay& wr = r.wr;
+  const auto okx = hn::Set(d, wr.o[wr.kx]), oky = hn::Set(d, wr.o[wr.ky]), okz = hn::Set(d, wr.o[wr.kz]);
+  const auto sx = hn::Set(d, wr.sx), sy = hn::Set(d, wr.sy), sz = hn::Set(d, wr.sz);
+  bool found = false;
+  for (uint32_t i = 0; i < count; i += uint32_t(L)) {
+    // Loading L lanes from any position inside a leaf stays within the arrays' kLeafPadding tail.
+    const size_t at = size_t(first) + i;
+    const auto* v = r.verts;
+    const auto lanes = WatertightTest(
+        d, hn::Sub(hn::LoadU(d, v[0] + at), okx), hn::Sub(hn::LoadU(d, v[1] + at), oky),
+        hn::Sub(hn::LoadU(d, v[2] + at), okz), hn::Sub(hn::LoadU(d, v[3] + at), okx),
+        hn::Sub(hn::LoadU(d, v[4] + at), oky), hn::Sub(hn::LoadU(d, v[5] + at), okz),
+        hn::Sub(hn::LoadU(d, v[6] + at), okx), hn::Sub(hn::LoadU(d, v[7] + at), oky),
+        hn::Sub(hn::LoadU(d, v[8] + at), okz), sx, sy, sz, hn::Set(d, *t_max), hn::FirstN(d, count - i));
+    if (!hn::AllFalse(d, lanes.hit)) {
+      if constexpr (kAny) return true;
+      // Closest lane; on equal t the first in leaf order, as a sequential scalar loop would keep.
+      const auto t = hn::IfThenElse(lanes.hit, lanes.t, hn::Set(d, kInfinity));
+      const auto t_min = hn::MinOfLanes(d, t);
+      const size_t lane = size_t(hn::FindFirstTrue(d, hn::Eq(t, t_min)));
+      *t_max = hn::GetLane(t_min);
+      *hit = {*t_max, uint32_t(at + lane), hn::ExtractLane(lanes.b1, lane), hn::ExtractLane(lanes.b2, lane)};
+      found = true;
+    }
+    if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero)) && RetestZeroLanesSingle<kAny>(d, lanes.zero, tris, at, wr, t_max, hit)) {
+      if constexpr (kAny) return true;
+      found = true;
+    }
+  }
+  return found;
+}
+
+// Closest hit (kAny = false: fills *hit, returns whether anything was hit) or any hit (returns occlusion), in the
+// subtree (ref, count): the whole tree by default (the root is node 0), or a packet entry's subtree when a packet
+// kernel hands its few remaining rays over to single-ray traversal.
+template <int N, bool kAny>
+HWY_INLINE bool TraceRay(const WideBvh<N>& bvh, const TriangleLeaves& tris, const SingleRay& r, float t_max,
+                         Hit* hit, uint32_t ref = 0, uint32_t count = 0) {
+  struct Entry {
+    uint32_t ref, count;
+    float t_near;
+  };
+  Entry stack[kMaxWideDepth * (N - 1) + 1];
+  int sp = 0;
+  bool found = false;
+  for (;;) {
+    if (ref & kLeafFlag) {
+      if (IntersectLeaf<kAny>(tris, ref & ~kLeafFlag, count, r, &t_max, hit)) {
+        if constexpr (kAny) return true;
+        found = true;
+      }
+    } else {
+      const WideNode<N>& node = bvh.nodes[ref];
+      alignas(64) float t_near[N];
+      uint32_t bits = IntersectChildren(node, r, t_max, t_near);
+      if (bits != 0) {
+        const uint32_t first = uint32_t(__builtin_ctz(bits));
+        bits &= bits - 1;
+        if (bits == 0) {  // one child: no ordering, no push
+          ref = node.child[first];
+          count = node.leaf_count[first];
+          continue;
+        }
+        if constexpr (kAny) {
+          // Any hit ends the search: no ordering.
+          for (; bits != 0; bits &= bits - 1) {
+            const uint32_t c = uint32_t(__builtin_ctz(bits));
+            stack[sp++] = {node.child[c], node.leaf_count[c], 0.0f};
+          }
+          ref = node.child[first];
+          count = node.leaf_count[first];
+          continue;
+        } else {
+          // Insertion sort of the hit children, far to near (at most N = 8 of them, usually 2 or 3).
+          uint32_t order[N];
+          int n = 0;
+          order[n++] = first;
+          for (; bits != 0; bits &= bits - 1) {
+            const uint32_t c = uint32_t(__builtin_ctz(bits));
+            int j = n++;
+            for (; j > 0 && t_near[order[j - 1]] < t_near[c]; --j) order[j] = order[j - 1];
+            order[j] = c;
+          }
+          for (int k = 0; k < n - 1; ++k) {
+            const uint32_t c = order[k];
+            stack[sp++] = {node.child[c], node.leaf_count[c], t_near[c]};
+          }
+          ref = node.child[order[n - 1]];
+          count = node.leaf_count[order[n - 1]];
+          continue;
+        }
+      }
+    }
+    // Pop the next entry that can still hold a closer hit.
+    for (;;) {
+      if (sp == 0) return found;
+      const Entry& e = stack[--sp];
+      if (kAny || e.t_near <= t_max) {
+        ref = e.ref;
+        count = e.count;
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace torte::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // TORTE_SIMD_TRAVERSE_SINGLE_INL_H_TARGET
