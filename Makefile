@@ -33,7 +33,7 @@ BENCH_ARGS ?= --benchmark_min_time=0.1
 COMPARE_ARGS ?=
 BENCH_FULL ?= 0
 SCALAR_BUILD ?= $(BUILD)-scalar
-SCALAR_VS_SIMD_FILTER ?= /(primary/closest|shadow/any)/wide8/
+SCALAR_VS_SIMD_FILTER ?= /(primary/closest|shadow/any)/wide8/|^(shading|eval)/
 
 bench:
 	bash scripts/install-deps.sh --bench
@@ -43,7 +43,7 @@ bench:
 	TORTE_BENCH_FULL=$(BENCH_FULL) ./$(BUILD)/bench/embree-compare $(COMPARE_ARGS)
 
 # The same torte_bench cases in this SIMD build and in a scalar-only build ($(SCALAR_BUILD), TORTE_SCALAR_ONLY=ON);
-# prints per case both Mrays/s and speedup=<simd/scalar>.
+# prints per case both rates (Mrays/s; Msamples/s for the shading cases) and speedup=<simd/scalar>.
 bench-scalar-vs-simd:
 	bash scripts/install-deps.sh
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DTORTE_BUILD_BENCH=ON -DTORTE_SCALAR_ONLY=OFF $(CMAKE_ARGS)

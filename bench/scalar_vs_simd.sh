@@ -2,16 +2,18 @@
 # Runs the same torte_bench cases in a SIMD build and in a scalar-only build (TORTE_SCALAR_ONLY=ON, i.e.
 # HWY_COMPILE_ONLY_SCALAR) and prints, per case, both rates and the speedup:
 #   workload=<case> simd_mrays=<x> scalar_mrays=<y> speedup=<x/y>
+# (simd_msamples/scalar_msamples for the shading cases of bench_shading.cc, whose rate counter is Msamples).
 # Usage: bench/scalar_vs_simd.sh SIMD_TORTE_BENCH SCALAR_TORTE_BENCH [FILTER [extra Google Benchmark args...]]
 # Default filter: the wide8 traversal cases of primary rays (closest hit) and shadow rays (any hit), single rays
-# and packets of 8 and 16. Used by `make bench-scalar-vs-simd`.
+# and packets of 8 and 16, and the shading cases (wavefront kernels, per-hit baseline, phase-2 BSDF evaluation).
+# Used by `make bench-scalar-vs-simd`.
 set -euo pipefail
 if (($# < 2)); then
   sed -n '2,7p' "$0" >&2
   exit 2
 fi
 simd=$1 scalar=$2
-filter=${3:-'/(primary/closest|shadow/any)/wide8/'}
+filter=${3:-'/(primary/closest|shadow/any)/wide8/|^(shading|eval)/'}
 shift $(($# >= 3 ? 3 : 2))
 extra=("$@")
 ((${#extra[@]})) || extra=(--benchmark_min_time=0.1)
@@ -38,7 +40,9 @@ extract() {
     /"name":/ { n = $2; gsub(/[",]/, "", n); name = n; err = 0 }
     /"aggregate_name": "(mean|stddev|cv)"/ { name = "" }
     /"error_occurred": true/ { err = 1 }
-    /"Mrays":/ { v = $2; gsub(/,/, "", v); if (name != "") print name, v, err }
+    /"(Mrays|Msamples)":/ {
+      u = $1; gsub(/[":]/, "", u); v = $2; gsub(/,/, "", v); if (name != "") print name, v, err, tolower(u)
+    }
   ' "$1"
 }
 extract "$tmp/simd.json" >"$tmp/simd.txt"
@@ -50,7 +54,10 @@ if [[ $scalar_target != SCALAR ]]; then
   echo "scalar_vs_simd: WARNING: the scalar-only build reports target '$scalar_target', not SCALAR" >&2
 fi
 awk '
-  NR == FNR { if ($1 != "#target") { if (!($1 in simd)) order[++n] = $1; simd[$1] = $2; bad[$1] = $3 } next }
+  NR == FNR {
+    if ($1 != "#target") { if (!($1 in simd)) order[++n] = $1; simd[$1] = $2; bad[$1] = $3; unit[$1] = $4 }
+    next
+  }
   $1 != "#target" { scalar[$1] = $2; bad[$1] = bad[$1] || $3 }
   END {
     status = 0
@@ -58,7 +65,8 @@ awk '
       k = order[i]
       if (!(k in scalar)) continue
       if (bad[k]) { printf "workload=%s FAILED (a run reported an error, see above)\n", k; status = 1; continue }
-      printf "workload=%s simd_mrays=%.3f scalar_mrays=%.3f speedup=%.2f\n", k, simd[k], scalar[k], simd[k] / scalar[k]
+      printf "workload=%s simd_%s=%.3f scalar_%s=%.3f speedup=%.2f\n", k, unit[k], simd[k], unit[k], scalar[k],
+             simd[k] / scalar[k]
     }
     exit status
   }

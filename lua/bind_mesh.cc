@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "geometry/mesh_io.h"
+#include "geometry/mesh_normals.h"
 #include "geometry/subdivide.h"
 #include "types.h"
 
@@ -61,6 +62,15 @@ int l_subdivide(lua_State* L) {
   return 1;
 }
 
+// mesh:smooth_normals(): a copy with angle-weighted vertex normals (scans usually come without any).
+int mesh_smooth_normals(lua_State* L) {
+  auto mesh = check_mesh(L, 1, "torte.mesh.smooth_normals");
+  auto out = std::make_shared<TriangleMesh>(*mesh);
+  compute_smooth_normals(*out);
+  push_object(L, std::move(out));
+  return 1;
+}
+
 int mesh_bounds(lua_State* L) {
   auto mesh = check_mesh(L, 1, "bounds");
   Bounds3f b;
@@ -89,11 +99,13 @@ int mesh_index(lua_State* L) {
     lua_pushboolean(L, mesh->has_uvs());
   } else if (key == "subdivide") {
     lua_pushcfunction(L, guarded<l_subdivide>);
+  } else if (key == "smooth_normals") {
+    lua_pushcfunction(L, guarded<mesh_smooth_normals>);
   } else if (key == "bounds") {
     lua_pushcfunction(L, guarded<mesh_bounds>);
   } else {
     throw Error("torte.mesh has no field '" + key +
-                "' (fields: triangles, vertices, has_normals, has_uvs; methods: subdivide, bounds)");
+                "' (fields: triangles, vertices, has_normals, has_uvs; methods: subdivide, smooth_normals, bounds)");
   }
   return 1;
 }

@@ -15,12 +15,18 @@ int l_scene(lua_State* L) {
   return 1;
 }
 
-// scene:add(obj, ...): shapes and lights (several at once, or arrays of them).
+// scene:add(obj, ...): shapes, lights and instances (several at once, or arrays of them).
 void add_one(lua_State* L, SceneBuilder& scene, int idx) {
   if (auto shape = to_object<ShapeDesc>(L, idx)) {
     scene.add_shape(*shape);
   } else if (auto light = to_object<Light>(L, idx)) {
     scene.add_light(*light);
+  } else if (auto instance = to_object<InstanceDesc>(L, idx)) {
+    if (instance->group.get() == &scene) throw Error("scene:add: a group cannot contain an instance of itself");
+    scene.add_instance(*instance);
+  } else if (to_object<SceneBuilder>(L, idx)) {
+    throw Error("scene:add: place a group with torte.instance{group = g, transform = ...} (or build it with "
+                "scene:frame)");
   } else if (lua_istable(L, idx) && !lua_getmetatable(L, idx)) {
     const lua_Integer n = lua_Integer(lua_rawlen(L, idx));
     for (lua_Integer i = 1; i <= n; ++i) {
@@ -29,8 +35,49 @@ void add_one(lua_State* L, SceneBuilder& scene, int idx) {
       lua_pop(L, 1);
     }
   } else {
-    throw Error("scene:add expects shapes and lights, got " + type_name(L, idx));
+    throw Error("scene:add expects shapes, lights and instances, got " + type_name(L, idx));
   }
+}
+
+// torte.group(): a container of shapes and instances to place many times (a scene object; see scene:frame).
+int l_group(lua_State* L) {
+  push_object(L, std::make_shared<SceneBuilder>());
+  return 1;
+}
+
+// torte.instance{group = g, transform = T}: one placement of a group.
+int l_instance(lua_State* L) {
+  KwArgs kw(L, 1, "torte.instance");
+  auto inst = std::make_shared<InstanceDesc>();
+  inst->group = kw.object<SceneBuilder>("group");
+  inst->transform = kw.transform("transform");
+  kw.finish();
+  push_object(L, std::move(inst));
+  return 1;
+}
+
+// scene:frame([transform,] function(g) ... end): a new group filled by the function (called with the group),
+// placed in the scene with the transform (identity by default). Returns the group, to place it again with
+// torte.instance. Frames nest: call g:frame inside.
+int scene_frame(lua_State* L) {
+  auto scene = to_object<SceneBuilder>(L, 1);
+  if (!scene) throw Error("scene:frame must be called with ':' on a scene or group");
+  Transform transform;
+  int fn = 2;
+  if (!lua_isfunction(L, 2)) {
+    auto t = to_object<Transform>(L, 2);
+    if (!t) throw Error("scene:frame expects (transform, function) or (function), got " + type_name(L, 2));
+    transform = *t;
+    fn = 3;
+  }
+  if (!lua_isfunction(L, fn)) throw Error("scene:frame expects a function that fills the frame, got " + type_name(L, fn));
+  auto group = std::make_shared<SceneBuilder>();
+  lua_pushvalue(L, fn);
+  push_object(L, group);
+  lua_call(L, 1, 0);
+  scene->add_instance({group, transform});
+  push_object(L, std::move(group));
+  return 1;
 }
 
 int scene_add(lua_State* L) {
@@ -94,6 +141,18 @@ void print_summary(const RenderedImage& img, double build_seconds, const RenderS
                double(st.shadow_rays) * 1e-6, mrays, static_cast<unsigned long long>(st.dropped_samples));
 }
 
+// Size of what is traced: the scene's own triangles, what instancing places, and the memory it all takes.
+void print_scene_summary(const Scene& scene) {
+  uint64_t instanced = 0;
+  for (const Instance& inst : scene.instances) instanced += scene.prototypes[inst.prototype]->geometry.primitive_count();
+  std::fprintf(stderr, "scene: %llu primitives", static_cast<unsigned long long>(scene.primitive_count()));
+  if (!scene.instances.empty())
+    std::fprintf(stderr, " + %zu instances of %zu groups (%llu primitives placed)", scene.instances.size(),
+                 scene.prototypes.size(), static_cast<unsigned long long>(instanced));
+  std::fprintf(stderr, "; %zu lights; memory: geometry %.1f MB, acceleration %.1f MB\n", scene.lights.size(),
+               double(scene.geometry_bytes()) * 1e-6, double(scene.accel_bytes()) * 1e-6);
+}
+
 int l_render(lua_State* L) {
   RunContext& ctx = run_context(L);
   KwArgs kw(L, 1, "torte.render");
@@ -145,6 +204,7 @@ int l_render(lua_State* L) {
   ctx.rays += out.stats.rays();
   ctx.dropped_samples += out.stats.dropped_samples;
   ++ctx.renders;
+  if (!ctx.quiet) print_scene_summary(*flat);
   if (!ctx.quiet || out.stats.interrupted) print_summary(*img, build_seconds, s);
   if (out.stats.dropped_samples > 0 && ctx.quiet)
     std::fprintf(stderr, "warning: %llu NaN/Inf samples were dropped\n",
@@ -241,6 +301,8 @@ void open_render(lua_State* L, int torte_index) {
   lua_newtable(L);
   lua_pushcfunction(L, guarded<scene_add>);
   lua_setfield(L, -2, "add");
+  lua_pushcfunction(L, guarded<scene_frame>);
+  lua_setfield(L, -2, "frame");
   lua_setfield(L, -2, "__index");
   lua_pop(L, 2);
 
@@ -250,7 +312,11 @@ void open_render(lua_State* L, int torte_index) {
   lua_setfield(L, -2, "__index");
   lua_pop(L, 2);
 
-  const luaL_Reg fns[] = {{"scene", guarded<l_scene>}, {"render", guarded<l_render>}, {nullptr, nullptr}};
+  const luaL_Reg fns[] = {{"scene", guarded<l_scene>},
+                          {"group", guarded<l_group>},
+                          {"instance", guarded<l_instance>},
+                          {"render", guarded<l_render>},
+                          {nullptr, nullptr}};
   lua_pushvalue(L, torte_index);
   set_functions(L, fns);
   lua_pop(L, 1);

@@ -97,6 +97,7 @@ class KwArgs {
   void finish();
   [[noreturn]] void fail(const char* key, const std::string& problem) const;
   const std::string& function() const { return function_; }
+  lua_State* state() const { return L_; }
 
  private:
   bool fetch(const char* key);  // pushes the value; returns false (and pops) when nil

@@ -68,6 +68,7 @@ void open_torte(lua_State* L, const RunOptions& options) {
   open_cameras(L, torte_index);
   open_render(L, torte_index);
   open_meshes(L, torte_index);
+  open_textures(L, torte_index);
   // `torte` is a global and also what require "torte" returns.
   lua_pushvalue(L, torte_index);
   lua_setglobal(L, "torte");

@@ -19,6 +19,7 @@ template <> struct LuaName<ShapeDesc> { static constexpr const char* value = "to
 template <> struct LuaName<Light> { static constexpr const char* value = "torte.light"; };
 template <> struct LuaName<CameraDesc> { static constexpr const char* value = "torte.camera"; };
 template <> struct LuaName<SceneBuilder> { static constexpr const char* value = "torte.scene"; };
+template <> struct LuaName<InstanceDesc> { static constexpr const char* value = "torte.instance"; };
 template <> struct LuaName<Filter> { static constexpr const char* value = "torte.filter"; };
 template <> struct LuaName<RenderedImage> { static constexpr const char* value = "torte.image"; };
 template <> struct LuaName<TriangleMesh> { static constexpr const char* value = "torte.mesh"; };
@@ -43,6 +44,7 @@ void open_lights(lua_State* L, int torte_index);     // torte.light.*
 void open_cameras(lua_State* L, int torte_index);    // torte.camera.*
 void open_render(lua_State* L, int torte_index);     // torte.scene, torte.render, torte.filter.*, images
 void open_meshes(lua_State* L, int torte_index);     // torte.mesh.*, torte.clock
+void open_textures(lua_State* L, int torte_index);   // torte.texture.* (lua/bind_texture.cc)
 // torte.shape.mesh's mesh=<torte.mesh> or file="path" (loaded now); nullptr when neither key is given.
 std::shared_ptr<const TriangleMesh> mesh_argument(KwArgs& kw);
 

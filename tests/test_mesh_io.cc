@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "geometry/mesh_io.h"
+#include "geometry/mesh_normals.h"
 #include "geometry/obj.h"
 #include "geometry/ply.h"
 #include "geometry/subdivide.h"
@@ -505,4 +506,24 @@ TEST_CASE("subdivide: a real scan grows by 4x per level with V + E vertices", "[
   for (const auto& [e, n] : edge_use(m)) boundary += n == 1;
   for (const auto& [e, n] : edge_use(one)) boundary_after += n == 1;
   CHECK(boundary_after == 2 * boundary);
+}
+
+TEST_CASE("smooth normals: flat polygons keep the face normal, a closed octahedron gets radial normals",
+          "[mesh][normals]") {
+  TriangleMesh hex = make_polygon({{0, 0, 0}, {2, 0, 0}, {3, 1, 0}, {2, 2, 0}, {0, 2, 0}, {-1, 1, 0}});
+  compute_smooth_normals(hex);
+  REQUIRE(hex.has_normals());
+  for (size_t i = 0; i < hex.vertex_count(); ++i) CHECK(hex.normal(uint32_t(i)).z == Approx(1.0f));
+
+  // Octahedron with shared vertices, wound outward: by symmetry each vertex normal is its position.
+  TriangleMesh oct;
+  for (Vec3f p : {Vec3f(1, 0, 0), Vec3f(-1, 0, 0), Vec3f(0, 1, 0), Vec3f(0, -1, 0), Vec3f(0, 0, 1), Vec3f(0, 0, -1)})
+    oct.add_vertex(p);
+  const uint32_t faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (const auto& f : faces) oct.add_triangle(f[0], f[1], f[2]);
+  compute_smooth_normals(oct);
+  for (uint32_t i = 0; i < 6; ++i) {
+    const Vec3f n = oct.normal(i), p = oct.position(i);
+    CHECK(dot(n, p) == Approx(1.0f).epsilon(1e-5));
+  }
 }

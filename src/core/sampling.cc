@@ -147,4 +147,33 @@ float Distribution1D::sample_continuous(float u, float* pdf, int* bin) const {
   return x;
 }
 
+Distribution2D::Distribution2D(std::span<const float> weights, int nu, int nv) {
+  if (nu <= 0 || nv <= 0 || weights.size() != size_t(nu) * size_t(nv))
+    throw Error("a 2D distribution needs nu * nv weights (nu, nv > 0)");
+  conditional_.reserve(size_t(nv));
+  std::vector<float> rows(static_cast<size_t>(nv));
+  for (int v = 0; v < nv; ++v) {
+    conditional_.emplace_back(weights.subspan(size_t(v) * size_t(nu), size_t(nu)));
+    rows[size_t(v)] = conditional_.back().integral();
+  }
+  marginal_ = Distribution1D(rows);
+}
+
+Vec2f Distribution2D::sample(Vec2f u, float* pdf) const {
+  float pdf_v, pdf_u;
+  int v;
+  const float y = marginal_.sample_continuous(u.y, &pdf_v, &v);
+  const float x = conditional_[size_t(v)].sample_continuous(u.x, &pdf_u);
+  if (pdf) *pdf = pdf_u * pdf_v;
+  return {x, y};
+}
+
+float Distribution2D::pdf(Vec2f p) const {
+  const int nv_ = nv(), nu_ = nu();
+  if (nv_ == 0) return 0;
+  const int v = std::clamp(int(p.y * float(nv_)), 0, nv_ - 1);
+  const int u = std::clamp(int(p.x * float(nu_)), 0, nu_ - 1);
+  return conditional_[size_t(v)].pmf(u) * float(nu_) * marginal_.pmf(v) * float(nv_);
+}
+
 }  // namespace torte

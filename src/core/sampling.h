@@ -48,4 +48,23 @@ class Distribution1D {
   float integral_ = 0;
 };
 
+// Piecewise-constant 2D distribution over [0,1)^2 on an nu x nv grid of non-negative weights (row-major,
+// weights[v * nu + u]): a marginal distribution over rows and one conditional distribution per row (pbrt's
+// Distribution2D). Densities are with respect to area in [0,1)^2; pdf(p) equals the density sample() reports.
+class Distribution2D {
+ public:
+  Distribution2D() = default;
+  Distribution2D(std::span<const float> weights, int nu, int nv);
+  int nu() const { return int(conditional_.size() ? conditional_[0].size() : 0); }
+  int nv() const { return int(conditional_.size()); }
+  float integral() const { return marginal_.integral(); }  // average weight
+  // Continuous sample in [0,1)^2; *pdf receives its density.
+  Vec2f sample(Vec2f u, float* pdf = nullptr) const;
+  float pdf(Vec2f p) const;
+
+ private:
+  std::vector<Distribution1D> conditional_;  // one per row v
+  Distribution1D marginal_;                   // over rows, weighted by the row averages
+};
+
 }  // namespace torte

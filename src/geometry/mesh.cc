@@ -28,10 +28,13 @@ void TriangleMesh::transform(const Transform& t) {
     const Vec3f p = t.apply_point(position(i));
     x[i] = p.x; y[i] = p.y; z[i] = p.z;
   }
+  // Normals map by the inverse transpose, all with one common scale and NOT renormalized per vertex: the
+  // interpolated normal field then is exactly the transformed object-space one, so a mesh placed by an instance
+  // (transformed after interpolation) shades like the same mesh transformed here. The common factor only keeps
+  // magnitudes near 1 (exactly 1 under similarity transforms).
+  const float scale = std::cbrt(std::fabs(t.determinant3()));
   for (size_t i = 0; i < nx.size(); ++i) {
-    Vec3f n = t.apply_normal(normal(i));
-    const float len = length(n);
-    if (len > 0) n = n / len;
+    const Vec3f n = t.apply_normal(normal(i)) * scale;
     nx[i] = n.x; ny[i] = n.y; nz[i] = n.z;
   }
   // A mirroring transform reverses the winding; swap two indices so cross(e1, e2) still points outward.

@@ -28,8 +28,9 @@ struct TriangleMesh {
   // Throws torte::Error (prefixed by `what`) for mismatched array sizes, out-of-range indices or non-finite
   // positions.
   void validate(const std::string& what) const;
-  // Maps positions and normals to world space in place (normals renormalized; handedness flips keep the
-  // winding-defined front face, so the geometric normal stays outward).
+  // Maps positions and normals to world space in place (normals by the inverse transpose, not renormalized per
+  // vertex, so interpolation commutes with the transform; handedness flips keep the winding-defined front face,
+  // so the geometric normal stays outward).
   void transform(const Transform& t);
   Bounds3f triangle_bounds(size_t tri) const;
   float triangle_area(size_t tri) const;

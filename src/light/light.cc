@@ -1,7 +1,9 @@
 #include "light/light.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "geometry/quadric.h"
 #include "scene/scene.h"
 
 namespace torte {
@@ -17,6 +19,38 @@ float area_to_solid_angle(float pdf_area, Vec3f p, Vec3f q, Vec3f n) {
   return pdf_area * dist2 / cos_l;
 }
 
+// Cone of a sphere light seen from p: false when p is inside (or on) the sphere, where area sampling is used.
+bool sphere_cone(const Light& light, Vec3f p, float* one_minus_cos, float* dc) {
+  const float r = light.sphere_radius;
+  const float dc2 = length_squared(light.sphere_center - p);
+  if (!(dc2 > r * r * 1.0001f)) return false;
+  const float sin2 = r * r / dc2;
+  const float cos_max = std::sqrt(std::max(0.0f, 1 - sin2));
+  *one_minus_cos = sin2 / (1 + cos_max);  // 1 - cos without cancellation
+  *dc = std::sqrt(dc2);
+  return *one_minus_cos > 0;
+}
+
+bool sample_sphere_cone(const Light& light, Vec3f p, Vec2f u, LightSample* s) {
+  float omc, dc;
+  if (!sphere_cone(light, p, &omc, &dc)) return false;
+  const Vec3f wc = (light.sphere_center - p) / dc;
+  const Vec3f local = sample_cone_1mc(u, omc);
+  const Vec3f wi = normalize(Frame::from_z(wc).to_world(local));
+  // Distance to the near intersection along wi: dc cos(theta) - sqrt(r^2 - dc^2 sin^2(theta)).
+  const float sin2 = local.x * local.x + local.y * local.y;
+  const float r = light.sphere_radius;
+  const float disc = std::max(0.0f, r * r - dc * dc * sin2);
+  float t = dc * local.z - std::sqrt(disc);
+  if (!(t > 0)) t = dc * local.z;  // grazing: the tangent point
+  s->wi = wi;
+  s->distance = t;
+  s->pdf = cone_pdf_1mc(omc);
+  s->radiance = light.radiance;
+  s->delta = false;
+  return std::isfinite(s->pdf) && s->pdf > 0;
+}
+
 }  // namespace
 
 Rgb area_emission(const Light& light, const SurfaceHit& hit, Vec3f w) {
@@ -24,15 +58,61 @@ Rgb area_emission(const Light& light, const SurfaceHit& hit, Vec3f w) {
   return {};
 }
 
+float spot_falloff(const Light& light, float cos_theta) {
+  if (cos_theta >= light.cos_falloff_start) return 1;
+  if (cos_theta <= light.cos_total) return 0;
+  const float t = (cos_theta - light.cos_total) / (light.cos_falloff_start - light.cos_total);
+  return t * t * (3 - 2 * t);
+}
+
+Vec3f sample_spot_emission(const Light& light, Vec2f u, float* pdf) {
+  const float omc = 1 - light.cos_total;
+  *pdf = cone_pdf_1mc(omc);
+  return normalize(Frame::from_z(light.direction).to_world(sample_cone_1mc(u, omc)));
+}
+
+void prepare_sphere_light(const Quadric& q, Light* light) {
+  light->sphere_cone = false;
+  if (light->kind != LightKind::Area || q.kind != QuadricKind::Sphere) return;
+  float scale;
+  if (!is_similarity(q.to_world, &scale)) return;
+  light->sphere_cone = true;
+  light->sphere_center = q.to_world.apply_point({0, 0, 0});
+  light->sphere_radius = q.radius * scale;
+}
+
+Rgb escaped_radiance(const Light& light, Vec3f dir) {
+  switch (light.kind) {
+    case LightKind::Infinite: return light.radiance;
+    case LightKind::Environment: return light.environment->lookup(dir);
+    case LightKind::Sky: return light.sky->radiance(dir);
+    default: return {};
+  }
+}
+
 bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s) {
   switch (light.kind) {
-    case LightKind::Point: {
+    case LightKind::Point:
+    case LightKind::Spot: {
       const Vec3f d = light.position - p;
       const float dist2 = length_squared(d);
       if (dist2 == 0) return false;
       s->distance = std::sqrt(dist2);
       s->wi = d / s->distance;
-      s->radiance = light.radiance / dist2;
+      float falloff = 1;
+      if (light.kind == LightKind::Spot) {
+        falloff = spot_falloff(light, dot(-s->wi, light.direction));
+        if (falloff == 0) return false;
+      }
+      s->radiance = light.radiance * (falloff / dist2);
+      s->pdf = 1;
+      s->delta = true;
+      return true;
+    }
+    case LightKind::Distant: {
+      s->wi = -light.direction;
+      s->distance = kInfinity;
+      s->radiance = light.radiance;
       s->pdf = 1;
       s->delta = true;
       return true;
@@ -45,7 +125,18 @@ bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, Ligh
       s->delta = false;
       return true;
     }
+    case LightKind::Environment:
+    case LightKind::Sky: {
+      const bool env = light.kind == LightKind::Environment;
+      const bool ok = env ? light.environment->sampling.sample(u, &s->wi, &s->pdf) : light.sky->sample(u, &s->wi, &s->pdf);
+      if (!ok) return false;
+      s->distance = kInfinity;
+      s->radiance = env ? light.environment->lookup(s->wi) : light.sky->radiance(s->wi);
+      s->delta = false;
+      return !s->radiance.is_black();
+    }
     case LightKind::Area: {
+      if (light.sphere_cone && sample_sphere_cone(light, p, u, s)) return true;
       Vec3f q, n;
       float pdf_area;
       if (light.object < scene.meshes.size()) {
@@ -86,9 +177,17 @@ bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, Ligh
 
 float light_pdf(const Scene& scene, const Light& light, Vec3f p, Vec3f wi, const SurfaceHit* hit, float t) {
   switch (light.kind) {
-    case LightKind::Point: return 0;
+    case LightKind::Point:
+    case LightKind::Spot:
+    case LightKind::Distant: return 0;
     case LightKind::Infinite: return uniform_sphere_pdf();
+    case LightKind::Environment: return light.environment->sampling.pdf(wi);
+    case LightKind::Sky: return light.sky->pdf(wi);
     case LightKind::Area: {
+      if (light.sphere_cone) {
+        float omc, dc;
+        if (sphere_cone(light, p, &omc, &dc)) return cone_pdf_1mc(omc);
+      }
       float pdf_area;
       if (light.object < scene.meshes.size()) {
         pdf_area = 1 / light.area;
@@ -103,9 +202,16 @@ float light_pdf(const Scene& scene, const Light& light, Vec3f p, Vec3f wi, const
 }
 
 float light_power(const Scene& scene, const Light& light) {
+  const float disk = kPi * scene.radius() * scene.radius();  // cross-section of the scene's bounding sphere
   switch (light.kind) {
     case LightKind::Point: return 4 * kPi * light.radiance.average();
-    case LightKind::Infinite: return 4 * kPi * kPi * scene.radius() * scene.radius() * light.radiance.average();
+    case LightKind::Spot:
+      return 2 * kPi * light.radiance.average() *
+             ((1 - light.cos_falloff_start) + 0.5f * (light.cos_falloff_start - light.cos_total));
+    case LightKind::Distant: return disk * light.radiance.average();
+    case LightKind::Infinite: return 4 * kPi * disk * light.radiance.average();
+    case LightKind::Environment: return disk * light.environment->integral;
+    case LightKind::Sky: return disk * (light.sky->sky_integral + light.sky->sun_integral);
     case LightKind::Area: return kPi * light.area * light.radiance.average() * (light.two_sided ? 2.0f : 1.0f);
   }
   return 0;

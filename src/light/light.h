@@ -1,45 +1,88 @@
 // Lights as plain data, one record type with a kind tag: sampling switches on the kind (a predictable branch,
-// not a virtual call). Area lights reference a scene object (a mesh or a quadric).
+// not a virtual call). Area lights reference a scene object (a mesh or a quadric); environment maps and the sky
+// keep their tables behind shared pointers, so copying a Light stays cheap.
+//
+// Kinds:
+//   Point        position, intensity `radiance` (W/sr). Delta.
+//   Spot         position, axis `direction`, intensity `radiance` (W/sr on the axis), cone: full intensity inside
+//                cos_falloff_start, smoothstep down to zero at cos_total (pbrt-v4). Delta.
+//   Distant      parallel light travelling along `direction`; `radiance` is the irradiance (W/m^2) on a surface
+//                facing it. Delta.
+//   Area         diffuse emitter on a scene object. Spheres under a similarity transform are sampled by solid angle
+//                (uniform in the cone of the sphere seen from outside); other shapes, and points inside a
+//                sphere, by area.
+//   Infinite     uniform radiance from every direction.
+//   Environment  equirectangular image (light/environment.h), importance-sampled over the whole sphere.
+//   Sky          Preetham sky plus sun disk (light/sky.h).
+// Infinite, Environment and Sky are "infinite-like": rays that escape the scene see escaped_radiance().
 #pragma once
 #include <cstdint>
+#include <memory>
 
 #include "core/rgb.h"
 #include "core/sampling.h"
 #include "core/vec.h"
+#include "light/environment.h"
+#include "light/sky.h"
 
 namespace torte {
 
 class Scene;
 struct SurfaceHit;
+struct Quadric;
 
-enum class LightKind : uint8_t { Point, Area, Infinite };
+enum class LightKind : uint8_t { Point, Area, Infinite, Spot, Distant, Environment, Sky };
 
 struct Light {
   LightKind kind = LightKind::Point;
-  Rgb radiance;          // point: intensity (W/sr); area: emitted radiance; infinite: radiance from every direction
-  Vec3f position;        // point
+  Rgb radiance;          // point/spot: intensity (W/sr); area: emitted radiance; infinite: radiance from every
+                         // direction; distant: irradiance
+  Vec3f position;        // point, spot
+  Vec3f direction{0, 0, 1};  // spot: cone axis (unit); distant: direction the light travels (unit)
+  float cos_total = 0;          // spot: cosine of the cone's half angle (no light beyond)
+  float cos_falloff_start = 1;  // spot: cosine of the half angle where the falloff starts
   uint32_t object = 0;   // area: emitting scene object
   bool two_sided = false;  // area: emits on both sides
   float area = 0;        // area: total world area
   Distribution1D triangles;  // area light on a mesh: triangle selection by area
+  // Area light on a sphere under a similarity transform (set by prepare_sphere_light): solid-angle sampling.
+  bool sphere_cone = false;
+  Vec3f sphere_center;
+  float sphere_radius = 0;
+  std::shared_ptr<const EnvironmentMap> environment;  // Environment
+  std::shared_ptr<const SkyModel> sky;                // Sky
 };
 
 struct LightSample {
   Rgb radiance;     // arriving radiance (or intensity / d^2 for point lights)
   Vec3f wi;         // unit direction from the shading point towards the light
-  float distance;   // to the light point (kInfinity for infinite lights)
+  float distance;   // to the light point (kInfinity for infinite and distant lights)
   float pdf;        // solid-angle density; for delta lights the probability (1)
-  bool delta;       // true for point lights: BSDF sampling cannot hit them
+  bool delta;       // true for point, spot and distant lights: BSDF sampling cannot hit them
 };
 
 // Samples light `l` as seen from point p. Returns false when the sample carries no light.
 bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s);
 // Solid-angle density with which sample_light would have chosen direction wi from p, given that the ray hit
-// `hit` on this area light (for area lights), or escaped (infinite lights).
+// `hit` on this area light (for area lights), or escaped (infinite-like lights). 0 for delta lights.
 float light_pdf(const Scene& scene, const Light& light, Vec3f p, Vec3f wi, const SurfaceHit* hit, float t);
 // Radiance an area light emits from `hit` towards -w (w is the ray direction).
 Rgb area_emission(const Light& light, const SurfaceHit& hit, Vec3f w);
-// Total emitted power, used to weight light selection.
+// True for lights that rays escaping the scene can see (Infinite, Environment, Sky).
+inline bool is_infinite_light(const Light& light) {
+  return light.kind == LightKind::Infinite || light.kind == LightKind::Environment || light.kind == LightKind::Sky;
+}
+// Radiance arriving along -dir from an infinite-like light for a ray with direction dir that escaped; black for
+// other kinds.
+Rgb escaped_radiance(const Light& light, Vec3f dir);
+// Total emitted power, used to weight light selection (lights at infinity: the power through the scene's
+// bounding sphere).
 float light_power(const Scene& scene, const Light& light);
+// Enables solid-angle sampling for an area light on a sphere placed by a similarity transform (no-op otherwise).
+void prepare_sphere_light(const Quadric& q, Light* light);
+// Spot light intensity factor for a direction at cos_theta from the axis (smoothstep, pbrt-v4).
+float spot_falloff(const Light& light, float cos_theta);
+// Samples an emission direction of a spot light uniformly in its cone (for light tracing); *pdf: solid angle.
+Vec3f sample_spot_emission(const Light& light, Vec2f u, float* pdf);
 
 }  // namespace torte

@@ -1,36 +1,33 @@
-// Lambertian reflection (two-sided: the surface reflects on whichever side the light arrives, never transmits).
-// Directions are in the local shading frame with the normal along +z on the side of wo.
+// Lambertian reflection. Two-sided like every opaque BSDF (see material/bsdf.h): it reflects on whichever side
+// wo lies and never transmits.
 #pragma once
-#include "core/rgb.h"
 #include "core/sampling.h"
-#include "core/vec.h"
+#include "material/bsdf.h"
 
 namespace torte {
 
 struct LambertBsdf {
   Rgb albedo;
 
+  bool has_non_specular() const { return true; }
   Rgb eval(Vec3f wo, Vec3f wi) const {
-    if (wo.z * wi.z <= 0) return {};
+    if (!same_hemisphere(wo, wi)) return {};
     return albedo * kInvPi;
   }
   float pdf(Vec3f wo, Vec3f wi) const {
-    if (wo.z * wi.z <= 0) return 0;
+    if (!same_hemisphere(wo, wi)) return 0;
     return cosine_hemisphere_pdf(std::fabs(wi.z));
   }
-  struct Sample {
-    Vec3f wi;
-    Rgb weight;  // f * |cos| / pdf
-    float pdf;
-  };
   // Cosine-weighted sampling of the hemisphere on wo's side.
-  bool sample(Vec3f wo, Vec2f u, Sample* s) const {
+  bool sample(Vec3f wo, float /*uc*/, Vec2f u, BsdfSample* s) const {
     Vec3f wi = sample_cosine_hemisphere(u);
     if (wo.z < 0) wi.z = -wi.z;
     s->pdf = cosine_hemisphere_pdf(std::fabs(wi.z));
     if (s->pdf <= 0) return false;
     s->wi = wi;
-    s->weight = albedo;  // (albedo/pi) * cos / (cos/pi)
+    s->f = albedo * kInvPi;
+    s->flags = kBsdfReflection;
+    s->eta = 1;
     return true;
   }
 };

@@ -1,16 +1,35 @@
-// Material types and their parameter tables. The renderer shades hits in wavefronts: hits are counting-sorted by
-// MaterialType and each type's queue is evaluated by one kernel templated on the type (see render/shade.h), so
-// there is no virtual call per hit. Adding a material type = a parameter struct here + a BSDF kernel.
+// Material types and their parameter tables (scene side). The renderer shades hits in wavefronts: hits are
+// counting-sorted by MaterialType and each type's queue is evaluated by one kernel templated on the type (see
+// render/shade.h and render/material_kernels.h), so there is no virtual call per hit. Mix and Bump are not shaded
+// themselves: render/material_resolve.h turns them into one of the leaf types (and a bumped shading normal)
+// before the sort. Adding a material type = a parameter struct and table here + MaterialTraits in
+// render/material_kernels.h + a line in the kernel dispatch of render/wavefront.cc.
+//
+// Parameters are FloatParam/ColorParam: a constant, or a texture in the scene's TextureTable.
 #pragma once
 #include <cstdint>
 #include <vector>
 
-#include "core/rgb.h"
+#include "material/microfacet.h"
+#include "texture/texture_param.h"
 
 namespace torte {
 
-enum class MaterialType : uint8_t { Lambert, Count };
+enum class MaterialType : uint8_t {
+  Lambert,        // matte without roughness
+  OrenNayar,      // matte with sigma > 0
+  Mirror,         // perfect specular reflection, tinted
+  Conductor,      // metal: microfacet (or smooth) reflection with complex-IOR Fresnel
+  Dielectric,     // glass and rough_glass: Fresnel reflection + refraction, smooth or microfacet (Walter 2007)
+  ThinDielectric, // glass{thin=true}: a thin slab, transmission straight through
+  CoatedDiffuse,  // plastic: diffuse base under a glossy dielectric coating
+  Mix,            // resolved stochastically into one of two materials by a texture
+  Bump,           // resolved into its inner material with a perturbed shading normal
+  Count
+};
 constexpr int kMaterialTypeCount = int(MaterialType::Count);
+// Types that own a shading kernel (Mix and Bump are resolved before shading).
+constexpr int kShadedMaterialTypeCount = int(MaterialType::Mix);
 
 // 8 bytes: which table and which row.
 struct MaterialRef {
@@ -18,13 +37,63 @@ struct MaterialRef {
   uint32_t index = 0;
 };
 
+// Microfacet roughness along the tangent's u and v. With `remap` (the default from Lua), alpha = roughness^2,
+// which spreads the perceptually useful range over [0, 1]; otherwise the values are alpha itself.
+struct RoughnessParams {
+  FloatParam u, v;
+  MicrofacetDistribution::Kind distribution = MicrofacetDistribution::Kind::GGX;
+  bool remap = true;
+};
+
 struct LambertParams {
-  Rgb albedo{0.5f};
+  ColorParam albedo{Rgb(0.5f)};
+};
+struct OrenNayarParams {
+  ColorParam albedo{Rgb(0.5f)};
+  FloatParam sigma;  // standard deviation of the facet angle, degrees
+};
+struct MirrorParams {
+  ColorParam tint{Rgb(1)};
+};
+struct ConductorParams {
+  ColorParam eta, k;
+  RoughnessParams roughness;
+};
+struct DielectricParams {
+  FloatParam eta{1.5f};  // inside over outside
+  RoughnessParams roughness;
+  ColorParam reflect_tint{Rgb(1)}, transmit_tint{Rgb(1)};
+};
+struct ThinDielectricParams {
+  FloatParam eta{1.5f};
+  ColorParam reflect_tint{Rgb(1)}, transmit_tint{Rgb(1)};
+};
+struct CoatedDiffuseParams {
+  ColorParam albedo{Rgb(0.5f)};
+  FloatParam eta{1.5f};
+  RoughnessParams roughness;
+};
+struct MixParams {
+  FloatParam amount;  // 0 = a, 1 = b; fractional values pick b with that probability
+  MaterialRef a, b;
+};
+struct BumpParams {
+  FloatParam height;  // displacement along the shading normal, in world units (times scale)
+  float scale = 1;
+  MaterialRef inner;
 };
 
 // One array per material type (structure of arrays across types).
 struct MaterialTables {
   std::vector<LambertParams> lambert;
+  std::vector<OrenNayarParams> oren_nayar;
+  std::vector<MirrorParams> mirror;
+  std::vector<ConductorParams> conductor;
+  std::vector<DielectricParams> dielectric;
+  std::vector<ThinDielectricParams> thin_dielectric;
+  std::vector<CoatedDiffuseParams> coated_diffuse;
+  std::vector<MixParams> mix;
+  std::vector<BumpParams> bump;
 };
 
 }  // namespace torte

@@ -1,22 +1,42 @@
-// Shading kernels: one per material type, each run over a whole queue of hits of that type. A kernel samples
-// a light (next-event estimation, weighted by MIS against BSDF sampling), queues the shadow ray, samples the
-// BSDF for the path's next ray and applies Russian roulette. Templated on the material type, so the BSDF calls
-// inline and the loop has no per-hit dispatch.
+// Shading kernels: one per material type, each run over the whole queue of hits of that type, in phases so
+// that every phase is a tight loop over arrays:
+//   1. build the BSDF of every hit (texture lookups) and sample the lights (next-event estimation);
+//   2. evaluate f and pdf for all light samples at once (MaterialTraits<T>::eval_batch when the type has a
+//      vectorised kernel, else a scalar loop);
+//   3. weight the light samples by MIS and queue the shadow rays;
+//   4. sample the BSDF for each path's next ray and apply Russian roulette.
+// Templated on the material type, so BSDF calls inline and no hit pays a per-hit dispatch.
 #pragma once
 #include <span>
+#include <type_traits>
+#include <vector>
 
 #include "core/sampler.h"
-#include "material/lambert.h"
+#include "render/material_kernels.h"
+#include "render/material_resolve.h"
 #include "render/path_state.h"
 #include "render/render.h"
 
 namespace torte {
 
-// Sample dimensions of one path: 0 is the filter; each scattering event then uses kDimsPerBounce.
+// Sample dimensions of one path: 0 is the filter; each scattering event then uses kDimsPerBounce. A 1D use
+// takes a dimension of its own (get_1d(d) equals get_2d(d).x).
 enum SampleDim : uint32_t { kDimFilter = 0, kDimFirstBounce = 1 };
-enum BounceDim : uint32_t { kDimLightSelect = 0, kDimLightPoint = 1, kDimBsdf = 2, kDimRoulette = 3, kDimsPerBounce = 4 };
+enum BounceDim : uint32_t {
+  kDimLightSelect = 0,
+  kDimLightPoint = 1,
+  kDimBsdf = 2,
+  kDimBsdfLobe = 3,
+  kDimRoulette = 4,
+  kDimMaterialMix = 5,
+  kDimsPerBounce = 6
+};
 // Per-light dimensions when every light is sampled at every vertex.
 constexpr uint32_t kDimAllLightsBase = 1u << 20;
+
+inline uint32_t bounce_dim(uint16_t depth, BounceDim d) {
+  return kDimFirstBounce + uint32_t(depth) * kDimsPerBounce + d;
+}
 
 struct ShadeContext {
   const Scene& scene;
@@ -26,95 +46,164 @@ struct ShadeContext {
   ShadowQueue& shadows;
 };
 
-template <MaterialType T>
-struct MaterialTraits;
-
-template <>
-struct MaterialTraits<MaterialType::Lambert> {
-  static LambertBsdf bsdf(const MaterialTables& tables, uint32_t index, const SurfaceHit&) {
-    return {tables.lambert[index].albedo};
-  }
+// A light sample waiting for its BSDF evaluation (phase 2) and MIS weighting (phase 3).
+struct LightCandidate {
+  uint32_t slot;   // index of the hit within the queue
+  Vec3f wi;        // world direction to the light
+  Vec3f wi_local;  // in the hit's shading frame
+  Rgb radiance;    // arriving radiance if unoccluded
+  float light_pdf; // selection pmf times the light's solid-angle pdf
+  float distance;  // to the light point (kInfinity for infinite lights)
+  bool delta;      // point-like light: no MIS
 };
+
+// Per-type scratch arrays, reused between wavefronts.
+template <class Bsdf>
+struct ShadeScratch {
+  std::vector<Bsdf> bsdf;
+  std::vector<Frame> frame;
+  std::vector<Vec3f> wo_local;
+  std::vector<LightCandidate> lights;
+  std::vector<Rgb> f;
+  std::vector<float> pdf;
+};
+
+// True when geometry and shading normals agree on whether wo -> wi is a reflection or a transmission. When they
+// disagree (interpolated normals far from the facet), the light would leak through the surface: drop it.
+inline bool consistent_sides(Vec3f ng, Vec3f wo, Vec3f wi, Vec3f wo_local, Vec3f wi_local) {
+  return (dot(wo, ng) * dot(wi, ng) > 0) == (wo_local.z * wi_local.z > 0);
+}
 
 namespace detail {
 
-// Next-event estimation towards one light, chosen with probability `pmf`.
-template <class Bsdf>
-void sample_one_light(const ShadeContext& ctx, uint32_t path, const Bsdf& bsdf, const Frame& frame, Vec3f p,
-                      Vec3f ng, Vec3f wo_local, const Light& light, float pmf, Vec2f u) {
-  LightSample ls;
-  if (!sample_light(ctx.scene, light, p, u, &ls)) return;
-  if (dot(ls.wi, ng) <= 0) return;  // arrives from behind the (oriented) surface
-  const Vec3f wi_local = frame.to_local(ls.wi);
-  const Rgb f = bsdf.eval(wo_local, wi_local) * std::fabs(wi_local.z);
-  if (f.is_black()) return;
-  const float light_pdf = pmf * ls.pdf;
-  const float weight = ls.delta ? 1.0f : power_heuristic(1, light_pdf, 1, bsdf.pdf(wo_local, wi_local));
-  const Rgb contribution = ctx.paths.beta[path] * f * ls.radiance * (weight / light_pdf);
-  if (contribution.is_black()) return;
-  const Vec3f o = offset_origin(p, ng, ls.wi);
-  float t_max = kInfinity;
-  if (ls.distance != kInfinity) {
-    // Stop just short of the light point (measured from the offset origin) so the light does not shadow itself.
-    const Vec3f q = p + ls.wi * ls.distance;
-    t_max = length(q - o) * (1 - 1e-4f);
+template <class Traits>
+concept HasEvalBatch = requires { &Traits::eval_batch; };
+
+// Phase 2: f and pdf for every light candidate.
+template <MaterialType T, class Bsdf>
+void eval_candidates(ShadeScratch<Bsdf>& sc) {
+  const size_t n = sc.lights.size();
+  sc.f.resize(n);
+  sc.pdf.resize(n);
+  if constexpr (HasEvalBatch<MaterialTraits<T>>) {
+    MaterialTraits<T>::eval_batch(sc);
+  } else {
+    for (size_t k = 0; k < n; ++k) {
+      const LightCandidate& c = sc.lights[k];
+      const Bsdf& b = sc.bsdf[c.slot];
+      sc.f[k] = b.eval(sc.wo_local[c.slot], c.wi_local);
+      sc.pdf[k] = b.pdf(sc.wo_local[c.slot], c.wi_local);
+    }
   }
-  ctx.shadows.push(o, ls.wi, t_max, contribution, path);
+}
+
+inline void add_candidate(const ShadeContext& ctx, std::vector<LightCandidate>& out, uint32_t slot,
+                          const SurfaceHit& s, const Frame& frame, Vec3f wo, Vec3f wo_local, const Light& light,
+                          float pmf, Vec2f u) {
+  LightSample ls;
+  if (!sample_light(ctx.scene, light, s.p, u, &ls)) return;
+  const Vec3f wi_local = frame.to_local(ls.wi);
+  if (!consistent_sides(s.ng, wo, ls.wi, wo_local, wi_local)) return;
+  out.push_back({slot, ls.wi, wi_local, ls.radiance, pmf * ls.pdf, ls.distance, ls.delta});
 }
 
 }  // namespace detail
 
-// Shades the paths in `queue` (all hitting material type T). Paths that end get depth kPathEnded.
+// Shades the paths in `queue` (all resolved to material type T). Paths that end get depth kPathEnded.
 template <MaterialType T>
-void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue) {
+void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
+                 ShadeScratch<typename MaterialTraits<T>::Bsdf>& sc) {
+  using Traits = MaterialTraits<T>;
+  using Bsdf = typename Traits::Bsdf;
   const Scene& scene = ctx.scene;
   PathState& ps = ctx.paths;
-  for (const uint32_t i : queue) {
+  const size_t n = queue.size();
+  sc.bsdf.clear();
+  sc.frame.resize(n);
+  sc.wo_local.resize(n);
+  sc.lights.clear();
+
+  // Phase 1: BSDFs and light samples.
+  for (size_t k = 0; k < n; ++k) {
+    const uint32_t i = queue[k];
     const SurfaceHit& s = ps.surface[i];
-    const MaterialRef mat = scene.objects[s.object].material;
-    const auto bsdf = MaterialTraits<T>::bsdf(scene.materials, mat.index, s);
+    const TextureContext tc = texture_context(s, ps.footprint[i]);
+    sc.bsdf.push_back(Traits::bsdf(scene, ps.material[i].index, tc, TransportMode::Radiance));
+    sc.frame[k] = Frame::from_z(s.ns);
     const Vec3f wo = -ps.dir[i];
-    // Shade on the side the ray arrived from: the materials so far reflect only.
-    const bool back = dot(s.ng, wo) < 0;
-    const Vec3f ng = back ? -s.ng : s.ng;
-    const Vec3f ns = back ? -s.ns : s.ns;
-    const Frame frame = Frame::from_z(ns);
-    const Vec3f wo_local = frame.to_local(wo);
+    sc.wo_local[k] = sc.frame[k].to_local(wo);
+    if (scene.lights.empty() || !sc.bsdf.back().has_non_specular()) continue;
     const uint32_t px = ps.pixel[i], si = ps.sample[i];
-    const uint32_t dim = kDimFirstBounce + uint32_t(ps.depth[i]) * kDimsPerBounce;
-
-    // Next-event estimation.
-    if (!scene.lights.empty()) {
-      if (ctx.settings.sample_all_lights) {
-        for (size_t l = 0; l < scene.lights.size(); ++l) {
-          const Vec2f u = ctx.sampler.get_2d(px, si, kDimAllLightsBase + uint32_t(ps.depth[i]) * 4096 + uint32_t(l));
-          detail::sample_one_light(ctx, i, bsdf, frame, s.p, ng, wo_local, scene.lights[l], 1.0f, u);
-        }
-      } else {
-        float pmf;
-        const int l = scene.light_selection.sample_discrete(ctx.sampler.get_1d(px, si, dim + kDimLightSelect), &pmf);
-        if (pmf > 0)
-          detail::sample_one_light(ctx, i, bsdf, frame, s.p, ng, wo_local, scene.lights[l], pmf,
-                                   ctx.sampler.get_2d(px, si, dim + kDimLightPoint));
+    if (ctx.settings.sample_all_lights) {
+      for (size_t l = 0; l < scene.lights.size(); ++l) {
+        const Vec2f u = ctx.sampler.get_2d(px, si, kDimAllLightsBase + uint32_t(ps.depth[i]) * 4096 + uint32_t(l));
+        detail::add_candidate(ctx, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], 1,
+                              u);
       }
+    } else {
+      float pmf;
+      const int l = scene.light_selection.sample_discrete(
+          ctx.sampler.get_1d(px, si, bounce_dim(ps.depth[i], kDimLightSelect)), &pmf);
+      if (pmf > 0)
+        detail::add_candidate(ctx, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], pmf,
+                              ctx.sampler.get_2d(px, si, bounce_dim(ps.depth[i], kDimLightPoint)));
     }
+  }
 
-    // BSDF sampling for the path's next ray.
-    typename decltype(bsdf)::Sample bs;
-    if (!bsdf.sample(wo_local, ctx.sampler.get_2d(px, si, dim + kDimBsdf), &bs)) {
+  // Phase 2: BSDF values for all light samples.
+  detail::eval_candidates<T>(sc);
+
+  // Phase 3: MIS weights and shadow rays.
+  for (size_t k = 0; k < sc.lights.size(); ++k) {
+    const LightCandidate& c = sc.lights[k];
+    const Rgb f = sc.f[k] * std::fabs(c.wi_local.z);
+    if (f.is_black() || !(c.light_pdf > 0)) continue;
+    const uint32_t i = queue[c.slot];
+    const float weight = c.delta ? 1.0f : power_heuristic(1, c.light_pdf, 1, sc.pdf[k]);
+    const Rgb contribution = ps.beta[i] * f * c.radiance * (weight / c.light_pdf);
+    if (contribution.is_black()) continue;
+    const SurfaceHit& s = ps.surface[i];
+    const Vec3f o = offset_origin(s.p, s.ng, c.wi);
+    float t_max = kInfinity;
+    if (c.distance != kInfinity) {
+      // Stop just short of the light point (measured from the offset origin) so the light does not shadow itself.
+      t_max = length(s.p + c.wi * c.distance - o) * (1 - 1e-4f);
+    }
+    ctx.shadows.push(o, c.wi, t_max, contribution, i);
+  }
+
+  // Phase 4: BSDF sampling for the paths' next rays.
+  const bool direct = ctx.settings.integrator == IntegratorKind::Direct;
+  for (size_t k = 0; k < n; ++k) {
+    const uint32_t i = queue[k];
+    const SurfaceHit& s = ps.surface[i];
+    const uint16_t depth = ps.depth[i];
+    const uint32_t px = ps.pixel[i], si = ps.sample[i];
+    BsdfSample bs;
+    // Single-lobe models ignore the lobe sample: do not pay for a sampler dimension they do not read.
+    constexpr bool kSingleLobe = std::is_same_v<Bsdf, LambertBsdf> || std::is_same_v<Bsdf, OrenNayarBsdf>;
+    const float uc = kSingleLobe ? 0.5f : ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe));
+    if (!sc.bsdf[k].sample(sc.wo_local[k], uc, ctx.sampler.get_2d(px, si, bounce_dim(depth, kDimBsdf)), &bs) ||
+        !(bs.pdf > 0)) {
       ps.depth[i] = kPathEnded;
       continue;
     }
-    const Vec3f wi = frame.to_world(bs.wi);
-    if (dot(wi, ng) <= 0) {  // the shading normal sent the ray below the surface
+    const Vec3f wi = sc.frame[k].to_world(bs.wi);
+    const Vec3f wo = -ps.dir[i];
+    if (!consistent_sides(s.ng, wo, wi, sc.wo_local[k], bs.wi)) {
       ps.depth[i] = kPathEnded;
       continue;
     }
-    Rgb beta = ps.beta[i] * bs.weight;
-    // Russian roulette: survival probability follows the throughput, compensated by 1/q (unbiased).
-    if (ps.depth[i] + 1 >= ctx.settings.rr_depth) {
-      const float q = std::min(0.95f, beta.max_component());
-      if (!(ctx.sampler.get_1d(px, si, dim + kDimRoulette) < q)) {
+    // `direct` follows specular chains only; a non-specular sample just looks for emission at its next hit.
+    uint8_t flags = bs.is_specular() ? kPathSpecular : kPathScattered;
+    if (direct && (ps.flags[i] & kPathScattered)) flags |= kPathScattered;
+    Rgb beta = ps.beta[i] * bs.weight();
+    if (bs.is_transmission()) ps.eta_scale[i] *= bs.eta * bs.eta;
+    // Russian roulette on the throughput without the eta^2 radiance scaling of refraction (pbrt-v4), so paths
+    // inside glass are not cut for carrying "too much" radiance; compensated by 1/q (unbiased).
+    if (depth + 1 >= ctx.settings.rr_depth) {
+      const float q = std::min(0.95f, (beta * ps.eta_scale[i]).max_component());
+      if (!(ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimRoulette)) < q)) {
         ps.depth[i] = kPathEnded;
         continue;
       }
@@ -122,9 +211,10 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue) {
     }
     ps.beta[i] = beta;
     ps.bsdf_pdf[i] = bs.pdf;
-    ps.origin[i] = offset_origin(s.p, ng, wi);
+    ps.flags[i] = flags;
+    ps.origin[i] = offset_origin(s.p, s.ng, wi);
     ps.dir[i] = wi;
-    ps.depth[i] += 1;
+    ps.depth[i] = uint16_t(depth + 1);
   }
 }
 

@@ -2,15 +2,24 @@
 
 #include <cmath>
 
+#include "core/rng.h"
+#include "render/material_resolve.h"
 #include "render/shade.h"
 
 namespace torte {
 
+namespace {
+// Thin-lens sample dimension: above every per-bounce and per-light dimension (kDimAllLightsBase + depth * 4096 +
+// light stays below 2^29 for any uint16 depth), so it never collides with them.
+constexpr uint32_t kDimLens = 1u << 30;
+}  // namespace
+
 void WavefrontRenderer::render(const std::vector<SampleRequest>& requests, std::vector<PixelSum>& film,
                                RenderStats& stats) {
-  // `direct` is the same pipeline stopped after one scattering event (specular chains come with specular
-  // materials); only its light-sampling strategy differs, chosen in the settings.
-  max_depth_ = settings_.integrator == IntegratorKind::Direct ? std::min(settings_.max_depth, 1) : settings_.max_depth;
+  // `direct` is the same pipeline, stopped after the first non-specular scattering event (it follows specular
+  // chains: mirrors and glass show the lit scene); its light-sampling strategy is chosen in the settings.
+  max_depth_ = settings_.max_depth;
+  spread_ = camera_.spread_angle();
   generate_camera_rays(requests);
   stats.camera_rays += requests.size();
   while (!active_.empty()) {
@@ -42,7 +51,8 @@ void WavefrontRenderer::generate_camera_rays(const std::vector<SampleRequest>& r
     const SampleRequest& r = requests[i];
     const Filter::Sample fs = settings_.filter.sample(sampler_.get_2d(r.pixel, r.sample, kDimFilter));
     const Vec2f raster(float(r.pixel % width) + 0.5f + fs.offset.x, float(r.pixel / width) + 0.5f + fs.offset.y);
-    const Ray ray = camera_.generate_ray(raster);
+    const Ray ray = camera_.has_lens() ? camera_.generate_ray(raster, sampler_.get_2d(r.pixel, r.sample, kDimLens))
+                                       : camera_.generate_ray(raster);
     paths_.pixel[i] = r.pixel;
     paths_.sample[i] = r.sample;
     paths_.filter_weight[i] = fs.weight;
@@ -52,6 +62,9 @@ void WavefrontRenderer::generate_camera_rays(const std::vector<SampleRequest>& r
     paths_.radiance[i] = Rgb(0);
     paths_.bsdf_pdf[i] = 0;
     paths_.depth[i] = 0;
+    paths_.flags[i] = 0;
+    paths_.eta_scale[i] = 1;
+    paths_.footprint[i] = camera_.footprint_at_origin();
     active_[i] = uint32_t(i);
   }
 }
@@ -93,9 +106,11 @@ void WavefrontRenderer::trace(RenderStats& stats) {
 void WavefrontRenderer::add_emission_and_queue(RenderStats&) {
   const Scene& scene = scene_;
   const bool all_lights = settings_.sample_all_lights;
+  const bool direct = settings_.integrator == IntegratorKind::Direct;
   // MIS weight of emission found by BSDF sampling against the light-sampling strategy that could have found it.
   auto emission_weight = [&](uint32_t i, int light_index, float light_pdf) {
-    if (paths_.depth[i] == 0) return 1.0f;  // seen directly by the camera: no light sampling competes
+    // Seen by the camera or through a delta lobe: no light sampling competes.
+    if (paths_.depth[i] == 0 || (paths_.flags[i] & kPathSpecular)) return 1.0f;
     const float pmf = all_lights ? 1.0f : scene.light_selection.pmf(light_index);
     return power_heuristic(1, paths_.bsdf_pdf[i], 1, pmf * light_pdf);
   };
@@ -108,9 +123,11 @@ void WavefrontRenderer::add_emission_and_queue(RenderStats&) {
     if (hit.prim == kNoHit) {
       for (size_t l = 0; l < scene.lights.size(); ++l) {
         const Light& light = scene.lights[l];
-        if (light.kind != LightKind::Infinite) continue;
+        if (!is_infinite_light(light)) continue;
+        const Rgb le = escaped_radiance(light, d);
+        if (le.is_black()) continue;
         const float w = emission_weight(i, int(l), light_pdf(scene, light, paths_.origin[i], d, nullptr, kInfinity));
-        paths_.radiance[i] += paths_.beta[i] * light.radiance * w;
+        paths_.radiance[i] += paths_.beta[i] * le * w;
       }
       paths_.depth[i] = kPathEnded;
       continue;
@@ -126,12 +143,20 @@ void WavefrontRenderer::add_emission_and_queue(RenderStats&) {
         paths_.radiance[i] += paths_.beta[i] * le * w;
       }
     }
-    if (paths_.depth[i] >= max_depth_) {
+    const bool direct_done = direct && (paths_.flags[i] & kPathScattered);
+    if (paths_.depth[i] >= max_depth_ || direct_done) {
       paths_.depth[i] = kPathEnded;
       continue;
     }
     paths_.surface[i] = s;
-    ++counts[int(object.material.type)];
+    paths_.footprint[i] += spread_ * hit.t;  // ray-cone width at the hit
+    const uint32_t px = paths_.pixel[i], si = paths_.sample[i];
+    const MaterialRef m = resolve_material(
+        scene, object.material, paths_.surface[i], paths_.footprint[i],
+        [&] { return sampler_.get_1d(px, si, bounce_dim(paths_.depth[i], kDimMaterialMix)); },
+        mix_bits((uint64_t(px) << 32 | si) ^ (uint64_t(paths_.depth[i]) << 56)));
+    paths_.material[i] = m;
+    ++counts[int(m.type)];
     active_[kept++] = i;
   }
   active_.resize(kept);
@@ -143,7 +168,7 @@ void WavefrontRenderer::add_emission_and_queue(RenderStats&) {
   for (int t = 0; t < kMaterialTypeCount; ++t) cursor[t] = queue_begin_[t];
   material_queue_.resize(kept);
   for (const uint32_t i : active_)
-    material_queue_[cursor[int(scene.objects[paths_.surface[i].object].material.type)]++] = i;
+    material_queue_[cursor[int(paths_.material[i].type)]++] = i;
 }
 
 void WavefrontRenderer::shade() {
@@ -153,8 +178,10 @@ void WavefrontRenderer::shade() {
     return std::span<const uint32_t>(material_queue_.data() + queue_begin_[int(t)],
                                      queue_begin_[int(t) + 1] - queue_begin_[int(t)]);
   };
-  shade_queue<MaterialType::Lambert>(ctx, queue(MaterialType::Lambert));
-  static_assert(kMaterialTypeCount == 1, "add the new material type's kernel call here");
+  // One kernel per shaded material type, each over its contiguous queue.
+  [&]<size_t... T>(std::index_sequence<T...>) {
+    (shade_queue<MaterialType(T)>(ctx, queue(MaterialType(T)), std::get<T>(scratch_)), ...);
+  }(std::make_index_sequence<kShadedMaterialTypeCount>{});
 }
 
 void WavefrontRenderer::trace_shadows(RenderStats& stats) {

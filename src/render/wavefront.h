@@ -2,12 +2,15 @@
 // material type, run one shading kernel per type, trace the shadow rays, repeat with the surviving paths.
 #pragma once
 #include <cstdint>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "camera/camera.h"
 #include "core/sampler.h"
 #include "render/path_state.h"
 #include "render/render.h"
+#include "render/shade.h"
 
 namespace torte {
 
@@ -42,6 +45,7 @@ class WavefrontRenderer {
   const RenderSettings& settings_;
   const Sampler& sampler_;
   int max_depth_ = 0;
+  float spread_ = 0;  // camera ray-cone spread angle
   PathState paths_;
   ShadowQueue shadows_;
   // Gathers the rays of `paths` (indices into paths_ or, for shadows, the shadow queue) into SoA arrays.
@@ -53,6 +57,11 @@ class WavefrontRenderer {
   std::vector<uint8_t> occluded_buf_;
   std::vector<uint32_t> material_queue_;           // active hits sorted by material type
   uint32_t queue_begin_[kMaterialTypeCount + 1] = {};
+  // Shading scratch, one per shaded material type (index = MaterialType).
+  template <size_t... T>
+  static auto make_scratch(std::index_sequence<T...>)
+      -> std::tuple<ShadeScratch<typename MaterialTraits<MaterialType(T)>::Bsdf>...>;
+  decltype(make_scratch(std::make_index_sequence<kShadedMaterialTypeCount>{})) scratch_;
 };
 
 }  // namespace torte

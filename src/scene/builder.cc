@@ -6,46 +6,88 @@
 
 namespace torte {
 
+// State shared while one scene is flattened: materials and textures go to the scene's tables once each, every
+// group with shapes becomes one prototype, and every path through the nesting of groups one instance.
+struct SceneBuilder::Flattening {
+  Scene& scene;
+  TextureTableBuilder textures;
+  MaterialFlattener materials;
+  std::map<const SceneBuilder*, uint32_t> prototype_of;
+  // Objects are numbered scene shapes first, then prototype after prototype: collected per prototype here and
+  // appended once the scene's own shapes are known.
+  std::vector<std::vector<SceneObject>> prototype_objects;
+
+  explicit Flattening(Scene& s) : scene(s), materials(s.materials, textures) {}
+
+  MaterialRef material(const std::shared_ptr<const MaterialDesc>& m) {
+    static const MaterialDesc kDefault{};
+    return materials.add(m ? *m : kDefault);
+  }
+
+  // Meshes come first in a set's object numbering, then quadrics (see GeometrySet).
+  static std::vector<const ShapeDesc*> ordered(const std::vector<ShapeDesc>& shapes) {
+    std::vector<const ShapeDesc*> out;
+    for (const ShapeDesc& s : shapes)
+      if (s.kind == ShapeDesc::Kind::Mesh) out.push_back(&s);
+    for (const ShapeDesc& s : shapes)
+      if (s.kind == ShapeDesc::Kind::Quadric) out.push_back(&s);
+    return out;
+  }
+
+  static void place(const ShapeDesc& s, std::vector<TriangleMesh>& meshes, std::vector<Quadric>& quadrics) {
+    if (s.kind == ShapeDesc::Kind::Mesh) {
+      TriangleMesh mesh = *s.mesh;
+      mesh.transform(s.transform);
+      meshes.push_back(std::move(mesh));
+    } else {
+      Quadric q = s.quadric;
+      q.to_world = s.transform;
+      quadrics.push_back(q);
+    }
+  }
+
+  uint32_t prototype(const SceneBuilder& group) {
+    if (auto it = prototype_of.find(&group); it != prototype_of.end()) return it->second;
+    if (!group.lights_.empty()) throw Error("a group placed as an instance holds lights; add lights to the scene");
+    auto proto = std::make_unique<Prototype>();
+    std::vector<SceneObject> objects;
+    for (const ShapeDesc* s : ordered(group.shapes_)) {
+      if (!s->emission.is_black())
+        throw Error("a group placed as an instance holds an emitting shape; area lights cannot be instanced, add "
+                    "the emitter to the scene itself");
+      place(*s, proto->meshes, proto->quadrics);
+      objects.push_back({material(s->material), -1});
+    }
+    const uint32_t index = uint32_t(scene.prototypes.size());
+    scene.prototypes.push_back(std::move(proto));
+    prototype_objects.push_back(std::move(objects));
+    prototype_of.emplace(&group, index);
+    return index;
+  }
+
+  // One instance per path through the nesting; `to_world` places `group`'s contents.
+  void instantiate(const SceneBuilder& group, const Transform& to_world, int depth) {
+    if (depth > 32) throw Error("groups nest more than 32 levels deep (does a group contain itself?)");
+    if (!group.shapes_.empty()) {
+      if (scene.instances.size() >= (size_t(1) << 28)) throw Error("more than 2^28 instances after nesting");
+      scene.instances.push_back({to_world, prototype(group)});
+    }
+    for (const InstanceDesc& inst : group.instances_) {
+      if (!inst.group) throw Error("internal: instance without a group");
+      instantiate(*inst.group, to_world * inst.transform, depth + 1);
+    }
+  }
+};
+
 std::shared_ptr<Scene> SceneBuilder::flatten() const {
   auto scene = std::make_shared<Scene>();
-  std::map<const MaterialDesc*, MaterialRef> material_refs;
-  auto material_ref = [&](const std::shared_ptr<const MaterialDesc>& m) {
-    static const MaterialDesc kDefault{};
-    const MaterialDesc* desc = m ? m.get() : &kDefault;
-    auto [it, inserted] = material_refs.try_emplace(desc);
-    if (inserted) {
-      it->second.type = desc->type;
-      switch (desc->type) {
-        case MaterialType::Lambert:
-          it->second.index = uint32_t(scene->materials.lambert.size());
-          scene->materials.lambert.push_back(desc->lambert);
-          break;
-        case MaterialType::Count: throw Error("internal: invalid material type");
-      }
-    }
-    return it->second;
-  };
+  Flattening f(*scene);
 
-  // Meshes come first in the object numbering, then quadrics (see Scene).
-  std::vector<const ShapeDesc*> ordered;
-  for (const ShapeDesc& s : shapes_)
-    if (s.kind == ShapeDesc::Kind::Mesh) ordered.push_back(&s);
-  for (const ShapeDesc& s : shapes_)
-    if (s.kind == ShapeDesc::Kind::Quadric) ordered.push_back(&s);
-
-  for (const ShapeDesc* s : ordered) {
+  for (const ShapeDesc* s : Flattening::ordered(shapes_)) {
     const uint32_t object = uint32_t(scene->objects.size());
-    if (s->kind == ShapeDesc::Kind::Mesh) {
-      TriangleMesh mesh = *s->mesh;
-      mesh.transform(s->transform);
-      scene->meshes.push_back(std::move(mesh));
-    } else {
-      Quadric q = s->quadric;
-      q.to_world = s->transform;
-      scene->quadrics.push_back(q);
-    }
+    Flattening::place(*s, scene->meshes, scene->quadrics);
     SceneObject obj;
-    obj.material = material_ref(s->material);
+    obj.material = f.material(s->material);
     if (!s->emission.is_black()) {
       Light light;
       light.kind = LightKind::Area;
@@ -57,7 +99,15 @@ std::shared_ptr<Scene> SceneBuilder::flatten() const {
     }
     scene->objects.push_back(obj);
   }
+  for (const InstanceDesc& inst : instances_) {
+    if (!inst.group) throw Error("internal: instance without a group");
+    f.instantiate(*inst.group, inst.transform, 1);
+  }
+  for (const auto& objects : f.prototype_objects)
+    scene->objects.insert(scene->objects.end(), objects.begin(), objects.end());
+
   for (const Light& l : lights_) scene->lights.push_back(l);
+  scene->textures = f.textures.finish();
   scene->camera = camera_;
   scene->has_camera = has_camera_;
   scene->finalize();

@@ -4,14 +4,10 @@
 #include <memory>
 #include <vector>
 
+#include "scene/material_desc.h"
 #include "scene/scene.h"
 
 namespace torte {
-
-struct MaterialDesc {
-  MaterialType type = MaterialType::Lambert;
-  LambertParams lambert;
-};
 
 struct ShapeDesc {
   enum class Kind { Mesh, Quadric } kind = Kind::Mesh;
@@ -23,19 +19,33 @@ struct ShapeDesc {
   bool two_sided = false;  // emit on both sides
 };
 
+class SceneBuilder;
+
+// A placement of a group (a SceneBuilder used as a container of shapes and further placements).
+struct InstanceDesc {
+  std::shared_ptr<const SceneBuilder> group;
+  Transform transform;  // group-to-parent
+};
+
+// A scene, or a group of shapes to place many times (instancing): the same type, so groups nest freely. Only
+// the scene that is rendered may hold lights and emitting shapes (area lights are not instanced).
 class SceneBuilder {
  public:
   void add_shape(ShapeDesc shape) { shapes_.push_back(std::move(shape)); }
+  void add_instance(InstanceDesc instance) { instances_.push_back(std::move(instance)); }
   void add_light(const Light& light) { lights_.push_back(light); }
   void set_camera(const CameraDesc& camera) { camera_ = camera; has_camera_ = true; }
   size_t shape_count() const { return shapes_.size(); }
   size_t light_count() const { return lights_.size(); }
+  size_t instance_count() const { return instances_.size(); }
 
   // Throws torte::Error on invalid content (bad meshes, degenerate shapes).
   std::shared_ptr<Scene> flatten() const;
 
  private:
+  struct Flattening;
   std::vector<ShapeDesc> shapes_;
+  std::vector<InstanceDesc> instances_;
   std::vector<Light> lights_;
   CameraDesc camera_;
   bool has_camera_ = false;

@@ -1,5 +1,7 @@
 #include "scene/scene.h"
 
+#include <algorithm>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -12,35 +14,24 @@
 namespace torte {
 
 void Scene::finalize() {
-  if (objects.size() != meshes.size() + quadrics.size())
-    throw Error("internal: scene objects do not match its shapes");
-  tri_mesh_.clear();
-  mesh_first_.clear();
-  for (uint32_t m = 0; m < meshes.size(); ++m) {
-    mesh_first_.push_back(uint32_t(tri_mesh_.size()));
-    tri_mesh_.insert(tri_mesh_.end(), meshes[m].triangle_count(), m);
+  uint32_t object_base = uint32_t(meshes.size() + quadrics.size());
+  for (const auto& proto : prototypes)
+    object_base += uint32_t(proto->meshes.size() + proto->quadrics.size());
+  if (objects.size() != object_base) throw Error("internal: scene objects do not match its shapes");
+  root_.build(meshes, quadrics, 0);
+  object_base = uint32_t(meshes.size() + quadrics.size());
+  for (const auto& proto : prototypes) {
+    proto->geometry.build(proto->meshes, proto->quadrics, object_base);
+    object_base += uint32_t(proto->meshes.size() + proto->quadrics.size());
   }
-  // Triangles: world-space vertices per global triangle, bounds, the wide BVH and its leaf-order vertex copy.
-  std::vector<Vec3f> vertices(size_t(triangle_count()) * 3);
-  std::vector<Bounds3f> tri_bounds(triangle_count());
-  // Parallel over meshes and, nested, over each mesh's triangles: one big mesh would otherwise run serially.
-  tbb::parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
-    const TriangleMesh& mesh = meshes[m];
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangle_count(), 8192),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                        for (size_t t = r.begin(); t < r.end(); ++t) {
-                          const size_t g = mesh_first_[m] + t;
-                          for (int k = 0; k < 3; ++k) vertices[3 * g + k] = mesh.position(mesh.indices[3 * t + k]);
-                          tri_bounds[g] = mesh.triangle_bounds(t);
-                        }
-                      });
-  });
-  tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds);
-  tri_leaves_ = make_triangle_leaves(tri_bvh_.prim_indices, vertices);
-  std::vector<Bounds3f> quadric_bounds(quadrics.size());
-  for (size_t q = 0; q < quadrics.size(); ++q) quadric_bounds[q] = world_bounds(quadrics[q]);
-  quadric_bvh_.build(quadric_bounds);
-  bounds_ = merge(tri_bvh_.bounds, quadric_bvh_.bounds());
+  // The instance level: a BVH2 over the instances' world bounds (the bottom levels are the prototypes').
+  std::vector<Bounds3f> instance_bounds(instances.size());
+  for (size_t i = 0; i < instances.size(); ++i) {
+    if (instances[i].prototype >= prototypes.size()) throw Error("internal: instance of a missing prototype");
+    instance_bounds[i] = instances[i].to_world.apply(prototypes[instances[i].prototype]->geometry.bounds());
+  }
+  instance_bvh_.build(instance_bounds);
+  bounds_ = merge(root_.bounds(), instance_bvh_.bounds());
 
   const Bounds3f b = bounds_;
   center_ = b.empty() ? Vec3f{} : b.center();
@@ -59,6 +50,7 @@ void Scene::finalize() {
       light.area = float(total);
     } else {
       light.area = area(quadrics[light.object - meshes.size()]);
+      prepare_sphere_light(quadrics[light.object - meshes.size()], &light);
     }
   }
   std::vector<float> power(lights.size());
@@ -66,21 +58,13 @@ void Scene::finalize() {
   light_selection = lights.empty() ? Distribution1D() : Distribution1D(power);
 }
 
-namespace {
-
-// A one-ray RaySoA view of a Ray.
-struct SingleRay {
-  float v[7];
-  explicit SingleRay(const Ray& r) : v{r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.t_max} {}
-  RaySoA soa() const { return {&v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6]}; }
-};
-
-}  // namespace
-
 bool Scene::intersect(Ray& ray, Hit* hit) const {
-  const SingleRay one(ray);
   Hit h;
-  intersect(one.soa(), 1, &h, false);
+  root_.intersect_one(ray, &h);
+  if (!instances.empty()) {
+    const float t[7] = {ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z, ray.t_max};
+    intersect_instances({&t[0], &t[1], &t[2], &t[3], &t[4], &t[5], &t[6]}, 1, &h);
+  }
   if (h.prim == kNoHit) return false;
   *hit = h;
   ray.t_max = h.t;
@@ -88,104 +72,91 @@ bool Scene::intersect(Ray& ray, Hit* hit) const {
 }
 
 bool Scene::occluded(const Ray& ray) const {
-  const SingleRay one(ray);
+  const float t[7] = {ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z, ray.t_max};
   uint8_t blocked = 0;
-  occluded(one.soa(), 1, &blocked, false);
+  occluded({&t[0], &t[1], &t[2], &t[3], &t[4], &t[5], &t[6]}, 1, &blocked, false);
   return blocked != 0;
 }
 
 void Scene::intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
-  if (triangle_count() > 0) {
-    if (coherent) {
-      intersect_closest_packets(tri_bvh_, tri_leaves_, rays, count, hits, 8);
-    } else {
-      intersect_closest(tri_bvh_, tri_leaves_, rays, count, hits);
-    }
-    // The kernels report leaf order; the rest of the renderer numbers triangles globally.
-    for (size_t i = 0; i < count; ++i)
-      if (hits[i].prim != kNoHit) hits[i].prim = tri_bvh_.prim_indices[hits[i].prim];
-  } else {
-    std::fill(hits, hits + count, Hit{});
-  }
-  if (!quadrics.empty()) intersect_quadrics(rays, count, hits);
+  root_.intersect(rays, count, hits, coherent);
+  if (!instances.empty()) intersect_instances(rays, count, hits);
 }
 
-void Scene::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const {
-  const uint32_t ntri = triangle_count();
+namespace {
+// The ray in an instance's space: the direction is mapped but not renormalized, so t means the same distance
+// along the ray in both spaces and hits compare directly.
+Ray to_instance(const Instance& inst, const Ray& world) {
+  const Transform& m = inst.to_world;
+  return m.apply_inverse(world);
+}
+}  // namespace
+
+void Scene::intersect_instances(const RaySoA& rays, size_t count, Hit* hits) const {
   for (size_t i = 0; i < count; ++i) {
     Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, std::min(rays.t_max[i], hits[i].t)};
     if (!(r.t_max > 0)) continue;
-    quadric_bvh_.intersect(r, [&](uint32_t q, Ray& ray) {
-      float t;
-      Vec2f uv;
-      if (!torte::intersect(quadrics[q], ray, &t, &uv)) return false;
-      ray.t_max = t;
-      hits[i] = {t, ntri + q, uv.x, uv.y};
+    instance_bvh_.intersect(r, [&](uint32_t k, Ray& ray) {
+      const Instance& inst = instances[k];
+      Hit h = hits[i];
+      h.instance = k;
+      if (!prototypes[inst.prototype]->geometry.intersect_one(to_instance(inst, ray), &h)) return false;
+      hits[i] = h;
+      ray.t_max = h.t;
       return true;
     });
   }
 }
 
 void Scene::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const {
-  if (triangle_count() > 0) {
-    if (coherent) {
-      intersect_any_packets(tri_bvh_, tri_leaves_, rays, count, blocked, 8);
-    } else {
-      intersect_any(tri_bvh_, tri_leaves_, rays, count, blocked);
-    }
-  } else {
-    std::fill(blocked, blocked + count, uint8_t(0));
-  }
-  if (quadrics.empty()) return;
+  root_.occluded(rays, count, blocked, coherent);
+  if (instances.empty()) return;
   for (size_t i = 0; i < count; ++i) {
     if (blocked[i]) continue;
     const Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
-    blocked[i] = quadric_bvh_.occluded(r, [&](uint32_t q, const Ray& ray) {
-      float t;
-      Vec2f uv;
-      return torte::intersect(quadrics[q], ray, &t, &uv);
+    blocked[i] = instance_bvh_.occluded(r, [&](uint32_t k, const Ray& ray) {
+      const Instance& inst = instances[k];
+      return prototypes[inst.prototype]->geometry.occluded_one(to_instance(inst, ray));
     });
   }
 }
 
 size_t Scene::accel_bytes() const {
-  return tri_bvh_.memory_bytes() + tri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
-         quadric_bvh_.prim_indices().size() * sizeof(uint32_t);
+  size_t bytes = root_.accel_bytes() + instance_bvh_.nodes().size() * sizeof(Bvh2Node) +
+                 instance_bvh_.prim_indices().size() * sizeof(uint32_t);
+  for (const auto& proto : prototypes) bytes += proto->geometry.accel_bytes();
+  return bytes;
 }
 
-SurfaceHit Scene::surface(const Ray& ray, const Hit& hit) const {
-  SurfaceHit s;
-  s.object = object_of(hit.prim);
-  if (hit.prim < triangle_count()) {
-    const TriangleMesh& mesh = meshes[tri_mesh_[hit.prim]];
-    const uint32_t* idx = &mesh.indices[3 * size_t(hit.prim - mesh_first_[tri_mesh_[hit.prim]])];
-    const Vec3f p0 = mesh.position(idx[0]), p1 = mesh.position(idx[1]), p2 = mesh.position(idx[2]);
-    const float b0 = 1 - hit.b1 - hit.b2;
-    // Interpolating the vertices is more accurate than o + t d far from the origin.
-    s.p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
-    s.ng = normalize(cross(p1 - p0, p2 - p0));
-    s.ns = s.ng;
-    if (mesh.has_normals()) {
-      const Vec3f n = mesh.normal(idx[0]) * b0 + mesh.normal(idx[1]) * hit.b1 + mesh.normal(idx[2]) * hit.b2;
-      if (length_squared(n) > 0) {
-        s.ns = normalize(n);
-        // Vertex normals state which side is the front: the geometric normal follows them (as in pbrt).
-        s.ng = face_forward(s.ng, s.ns);
-      }
-    }
-    if (mesh.has_uvs()) {
-      s.uv = Vec2f(mesh.u[idx[0]] * b0 + mesh.u[idx[1]] * hit.b1 + mesh.u[idx[2]] * hit.b2,
-                   mesh.v[idx[0]] * b0 + mesh.v[idx[1]] * hit.b1 + mesh.v[idx[2]] * hit.b2);
-    } else {
-      s.uv = Vec2f(hit.b1 + hit.b2, hit.b2);  // (0,0), (1,0), (1,1) at the vertices
-    }
-    return s;
+namespace {
+size_t mesh_bytes(const TriangleMesh& m) {
+  return (m.x.size() + m.y.size() + m.z.size() + m.nx.size() + m.ny.size() + m.nz.size() + m.u.size() + m.v.size()) *
+             sizeof(float) +
+         m.indices.size() * sizeof(uint32_t);
+}
+}  // namespace
+
+size_t Scene::geometry_bytes() const {
+  size_t bytes = quadrics.size() * sizeof(Quadric) + instances.size() * sizeof(Instance);
+  for (const TriangleMesh& m : meshes) bytes += mesh_bytes(m);
+  for (const auto& proto : prototypes) {
+    bytes += proto->quadrics.size() * sizeof(Quadric);
+    for (const TriangleMesh& m : proto->meshes) bytes += mesh_bytes(m);
   }
-  const SurfacePoint sp = surface_at(quadrics[hit.prim - triangle_count()], Vec2f(hit.b1, hit.b2));
-  s.p = sp.p;
-  s.ng = s.ns = sp.n;
-  s.uv = sp.uv;
-  (void)ray;
+  return bytes;
+}
+
+SurfaceHit Scene::surface(const Ray&, const Hit& hit) const {
+  if (hit.instance == kNoHit) return root_.surface(hit);
+  const Instance& inst = instances[hit.instance];
+  SurfaceHit s = prototypes[inst.prototype]->geometry.surface(hit);
+  const Transform& m = inst.to_world;
+  s.p = m.apply_point(s.p);
+  // Normals map by the inverse transpose, which keeps them on the front side even under mirroring.
+  s.ng = normalize(m.apply_normal(s.ng));
+  s.ns = normalize(m.apply_normal(s.ns));
+  s.dpdu = m.apply_vector(s.dpdu);
+  s.dpdv = m.apply_vector(s.dpdv);
   return s;
 }
 

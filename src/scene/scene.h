@@ -1,32 +1,23 @@
-// The flattened, immutable scene the renderer reads: world-space SoA meshes, transformed analytic shapes, a
-// BVH over all primitives, material tables and lights. Built once per render{} by SceneBuilder::flatten.
+// The flattened, immutable scene the renderer reads: world-space SoA meshes, transformed analytic shapes, their
+// BVHs, instanced prototypes with a top-level BVH over the instances, material tables and lights. Built once per render{} by SceneBuilder::flatten.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
-#include "accel/bvh2.h"
-#include "accel/bvh_build.h"
-#include "accel/hit.h"
-#include "accel/wide_bvh.h"
 #include "camera/camera.h"
 #include "core/sampling.h"
 #include "geometry/mesh.h"
 #include "geometry/quadric.h"
 #include "light/light.h"
 #include "material/material.h"
+#include "scene/geometry_set.h"
+#include "texture/texture.h"
 
 namespace torte {
 
-// Hit (accel/hit.h): prim is a global primitive id, [0, triangle_count) triangles, then quadrics.
-
-// Everything shading needs about a hit point.
-struct SurfaceHit {
-  Vec3f p;
-  Vec3f ng;  // unit geometric normal, front side as defined by the shape (winding / outward)
-  Vec3f ns;  // unit shading normal (interpolated vertex normals), on the same side as ng
-  Vec2f uv;
-  uint32_t object;
-};
+// Hit (accel/hit.h): prim is a primitive id within its geometry set ([0, triangle_count) triangles, then
+// quadrics); instance is kNoHit for the scene's own shapes, else the index in Scene::instances.
 
 // One placed shape (a mesh or a quadric) with its material and, if it emits, its area light.
 struct SceneObject {
@@ -34,26 +25,46 @@ struct SceneObject {
   int32_t area_light = -1;  // index into Scene::lights, -1 if the object does not emit
 };
 
+// A group of shapes placed by instances (torte.group / scene:frame): its own geometry set, in group space.
+struct Prototype {
+  std::vector<TriangleMesh> meshes;
+  std::vector<Quadric> quadrics;
+  GeometrySet geometry;
+};
+
+// One placement of a prototype. Nested frames are flattened into one instance per path through the nesting,
+// with the composed transform, so tracing needs two levels only (as Embree does).
+struct Instance {
+  Transform to_world;
+  uint32_t prototype;
+};
+
 class Scene {
  public:
-  // Meshes in world space; object i is meshes[i] for i < meshes.size(), then quadrics.
+  // The scene's own shapes in world space; object i is meshes[i] for i < meshes.size(), then quadrics, then
+  // the objects of the prototypes (each prototype's objects numbered from its geometry's object base).
   std::vector<TriangleMesh> meshes;
   std::vector<Quadric> quadrics;
   std::vector<SceneObject> objects;
+  // Instancing (two levels): prototypes shared by many instances. Held by pointer: each geometry set points
+  // into its prototype's arrays.
+  std::vector<std::unique_ptr<Prototype>> prototypes;
+  std::vector<Instance> instances;
   MaterialTables materials;
+  TextureTable textures;
   std::vector<Light> lights;
   Distribution1D light_selection;  // light selection proportional to power
   CameraDesc camera;
   bool has_camera = false;
 
-  // Builds triangle tables, the BVH and the light distribution; call after filling the arrays above.
+  // Builds the BVHs (top-level geometry, every prototype, the instance level) and the light distribution; call
+  // after filling the arrays above.
   void finalize();
 
-  uint32_t triangle_count() const { return uint32_t(tri_mesh_.size()); }
-  uint32_t primitive_count() const { return triangle_count() + uint32_t(quadrics.size()); }
-  uint32_t object_of(uint32_t prim) const {
-    return prim < triangle_count() ? tri_mesh_[prim] : uint32_t(meshes.size()) + (prim - triangle_count());
-  }
+  // Top-level (non-instanced) geometry.
+  uint32_t triangle_count() const { return root_.triangle_count(); }
+  uint32_t primitive_count() const { return root_.primitive_count(); }
+  uint32_t object_of(uint32_t prim) const { return root_.object_of(prim); }
   Bounds3f bounds() const { return bounds_; }
   // Bounding sphere of the scene (for infinite lights).
   Vec3f center() const { return center_; }
@@ -66,20 +77,18 @@ class Scene {
   // kernels, others one ray at a time through the SIMD single-ray kernels.
   void intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const;
   void occluded(const RaySoA& rays, size_t count, uint8_t* occluded, bool coherent) const;
+  // The hit's surface in world space (instances map points, normals and tangents to the world).
   SurfaceHit surface(const Ray& ray, const Hit& hit) const;
-  // Bytes of acceleration data (wide BVH nodes, leaf triangles, index map, quadric BVH).
+  // Bytes of acceleration data (wide BVH nodes, leaf triangles, index maps, quadric and instance BVHs), all
+  // levels, prototypes counted once.
   size_t accel_bytes() const;
+  // Bytes of geometry (mesh arrays, quadrics), prototypes counted once, plus the instance records.
+  size_t geometry_bytes() const;
 
  private:
-  // Adds quadric hits to hits already holding the closest triangle hit (or a miss).
-  void intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const;
-  std::vector<uint32_t> tri_mesh_;   // global triangle -> mesh
-  std::vector<uint32_t> mesh_first_;  // mesh -> first global triangle
-  // All triangles of all meshes in one wide BVH (SIMD kernels, simd/traverse.h); the few analytic shapes in a
-  // scalar BVH2 of their own, traced after it with t_max clipped to the triangle hit.
-  WideBvh<kDefaultBvhWidth> tri_bvh_;
-  TriangleLeaves tri_leaves_;
-  Bvh2 quadric_bvh_;
+  void intersect_instances(const RaySoA& rays, size_t count, Hit* hits) const;
+  GeometrySet root_;
+  Bvh2 instance_bvh_;
   Bounds3f bounds_;
   Vec3f center_;
   float radius_ = 0;

@@ -112,7 +112,8 @@ TEST_CASE("scenes: the scenes directory holds the expected scenes", "[scenes]") 
   for (const fs::path& p : scene_scripts()) names.push_back(p.filename().string());
   INFO("found " << names.size() << " scenes");
   CHECK(kSceneTestsRegistered);
-  for (const char* expected : {"cornell-box.lua", "shapes.lua", "lights.lua"})
+  for (const char* expected : {"cornell-box.lua", "shapes.lua", "lights.lua", "materials.lua", "textures.lua",
+                               "instancing.lua"})
     CHECK(std::find(names.begin(), names.end(), expected) != names.end());
 }
 

@@ -1,0 +1,203 @@
+#include "scene/geometry_set.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "traverse.h"
+
+namespace torte {
+
+void GeometrySet::build(const std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
+                        uint32_t object_base) {
+  meshes_ = &meshes;
+  quadrics_ = &quadrics;
+  object_base_ = object_base;
+  tri_mesh_.clear();
+  mesh_first_.clear();
+  for (uint32_t m = 0; m < meshes.size(); ++m) {
+    mesh_first_.push_back(uint32_t(tri_mesh_.size()));
+    tri_mesh_.insert(tri_mesh_.end(), meshes[m].triangle_count(), m);
+  }
+  // Triangles: vertices per triangle, bounds, the wide BVH and its leaf-order vertex copy.
+  std::vector<Vec3f> vertices(size_t(triangle_count()) * 3);
+  std::vector<Bounds3f> tri_bounds(triangle_count());
+  // Parallel over meshes and, nested, over each mesh's triangles: one big mesh would otherwise run serially.
+  tbb::parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
+    const TriangleMesh& mesh = meshes[m];
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangle_count(), 8192),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                        for (size_t t = r.begin(); t < r.end(); ++t) {
+                          const size_t g = mesh_first_[m] + t;
+                          for (int k = 0; k < 3; ++k) vertices[3 * g + k] = mesh.position(mesh.indices[3 * t + k]);
+                          tri_bounds[g] = mesh.triangle_bounds(t);
+                        }
+                      });
+  });
+  tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds);
+  tri_leaves_ = make_triangle_leaves(tri_bvh_.prim_indices, vertices);
+  std::vector<Bounds3f> quadric_bounds(quadrics.size());
+  for (size_t q = 0; q < quadrics.size(); ++q) quadric_bounds[q] = world_bounds(quadrics[q]);
+  quadric_bvh_.build(quadric_bounds);
+  bounds_ = merge(tri_bvh_.bounds, quadric_bvh_.bounds());
+}
+
+namespace {
+
+// A one-ray RaySoA view of a Ray.
+struct SingleRay {
+  float v[7];
+  explicit SingleRay(const Ray& r) : v{r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.t_max} {}
+  RaySoA soa() const { return {&v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6]}; }
+};
+
+}  // namespace
+
+bool GeometrySet::intersect_one(const Ray& ray, Hit* hit) const {
+  Ray r = ray;
+  r.t_max = std::min(ray.t_max, hit->t);
+  if (!(r.t_max > 0) || empty()) return false;
+  const SingleRay one(r);
+  Hit h;
+  intersect(one.soa(), 1, &h, false);
+  if (h.prim == kNoHit || !(h.t < hit->t)) return false;
+  h.instance = hit->instance;
+  *hit = h;
+  return true;
+}
+
+bool GeometrySet::occluded_one(const Ray& ray) const {
+  if (empty()) return false;
+  const SingleRay one(ray);
+  uint8_t blocked = 0;
+  occluded(one.soa(), 1, &blocked, false);
+  return blocked != 0;
+}
+
+void GeometrySet::intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
+  if (triangle_count() > 0) {
+    if (coherent) {
+      intersect_closest_packets(tri_bvh_, tri_leaves_, rays, count, hits, 8);
+    } else {
+      intersect_closest(tri_bvh_, tri_leaves_, rays, count, hits);
+    }
+    // The kernels report leaf order; the rest of the renderer numbers triangles per set.
+    for (size_t i = 0; i < count; ++i)
+      if (hits[i].prim != kNoHit) hits[i].prim = tri_bvh_.prim_indices[hits[i].prim];
+  } else {
+    std::fill(hits, hits + count, Hit{});
+  }
+  if (!quadrics_->empty()) intersect_quadrics(rays, count, hits);
+}
+
+void GeometrySet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const {
+  const uint32_t ntri = triangle_count();
+  for (size_t i = 0; i < count; ++i) {
+    Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, std::min(rays.t_max[i], hits[i].t)};
+    if (!(r.t_max > 0)) continue;
+    quadric_bvh_.intersect(r, [&](uint32_t q, Ray& ray) {
+      float t;
+      Vec2f uv;
+      if (!torte::intersect((*quadrics_)[q], ray, &t, &uv)) return false;
+      ray.t_max = t;
+      hits[i] = {t, ntri + q, uv.x, uv.y};
+      return true;
+    });
+  }
+}
+
+void GeometrySet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const {
+  if (triangle_count() > 0) {
+    if (coherent) {
+      intersect_any_packets(tri_bvh_, tri_leaves_, rays, count, blocked, 8);
+    } else {
+      intersect_any(tri_bvh_, tri_leaves_, rays, count, blocked);
+    }
+  } else {
+    std::fill(blocked, blocked + count, uint8_t(0));
+  }
+  if (quadrics_->empty()) return;
+  for (size_t i = 0; i < count; ++i) {
+    if (blocked[i]) continue;
+    const Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
+    blocked[i] = quadric_bvh_.occluded(r, [&](uint32_t q, const Ray& ray) {
+      float t;
+      Vec2f uv;
+      return torte::intersect((*quadrics_)[q], ray, &t, &uv);
+    });
+  }
+}
+
+size_t GeometrySet::accel_bytes() const {
+  return tri_bvh_.memory_bytes() + tri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
+         quadric_bvh_.prim_indices().size() * sizeof(uint32_t) + tri_mesh_.size() * sizeof(uint32_t);
+}
+
+SurfaceHit GeometrySet::surface(const Hit& hit) const {
+  SurfaceHit s;
+  s.object = object_of(hit.prim);
+  const std::vector<TriangleMesh>& meshes = *meshes_;
+  const std::vector<Quadric>& quadrics = *quadrics_;
+  if (hit.prim < triangle_count()) {
+    const TriangleMesh& mesh = meshes[tri_mesh_[hit.prim]];
+    const uint32_t* idx = &mesh.indices[3 * size_t(hit.prim - mesh_first_[tri_mesh_[hit.prim]])];
+    const Vec3f p0 = mesh.position(idx[0]), p1 = mesh.position(idx[1]), p2 = mesh.position(idx[2]);
+    const float b0 = 1 - hit.b1 - hit.b2;
+    // Interpolating the vertices is more accurate than o + t d far from the origin.
+    s.p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
+    s.ng = normalize(cross(p1 - p0, p2 - p0));
+    s.ns = s.ng;
+    if (mesh.has_normals()) {
+      const Vec3f n = mesh.normal(idx[0]) * b0 + mesh.normal(idx[1]) * hit.b1 + mesh.normal(idx[2]) * hit.b2;
+      if (length_squared(n) > 0) {
+        s.ns = normalize(n);
+        // Vertex normals state which side is the front: the geometric normal follows them (as in pbrt).
+        s.ng = face_forward(s.ng, s.ns);
+      }
+    }
+    // Vertex uvs: the mesh's, or a fixed parameterization (0,0), (1,0), (1,1) of every triangle.
+    Vec2f t0(0, 0), t1(1, 0), t2(1, 1);
+    if (mesh.has_uvs()) {
+      t0 = Vec2f(mesh.u[idx[0]], mesh.v[idx[0]]);
+      t1 = Vec2f(mesh.u[idx[1]], mesh.v[idx[1]]);
+      t2 = Vec2f(mesh.u[idx[2]], mesh.v[idx[2]]);
+    }
+    s.uv = t0 * b0 + t1 * hit.b1 + t2 * hit.b2;
+    // dp/du and dp/dv from the triangle's edges in position and uv (pbrt's construction).
+    const Vec2f duv02 = t0 - t2, duv12 = t1 - t2;
+    const Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
+    const float det = duv02.x * duv12.y - duv02.y * duv12.x;
+    if (std::fabs(det) > 1e-12f) {
+      s.dpdu = (dp02 * duv12.y - dp12 * duv02.y) / det;
+      s.dpdv = (dp12 * duv02.x - dp02 * duv12.x) / det;
+    }
+    if (!(length_squared(cross(s.dpdu, s.dpdv)) > 0)) {  // degenerate uvs: any tangent frame
+      const Frame f = Frame::from_z(s.ng);
+      s.dpdu = f.s;
+      s.dpdv = f.t;
+    }
+    return s;
+  }
+  const Quadric& q = quadrics[hit.prim - triangle_count()];
+  const Vec2f uv(hit.b1, hit.b2);
+  const SurfacePoint sp = surface_at(q, uv);
+  s.p = sp.p;
+  s.ng = s.ns = sp.n;
+  s.uv = sp.uv;
+  // Tangents by central differences of the parameterization (quadrics are few; this is off the hot path of
+  // triangle scenes). Poles and other degenerate points fall back to any frame around the normal.
+  constexpr float h = 1e-3f;
+  auto at = [&](float u, float v) { return surface_at(q, Vec2f(std::clamp(u, 0.0f, 1.0f), std::clamp(v, 0.0f, 1.0f))).p; };
+  s.dpdu = (at(uv.x + h, uv.y) - at(uv.x - h, uv.y)) / (2 * h);
+  s.dpdv = (at(uv.x, uv.y + h) - at(uv.x, uv.y - h)) / (2 * h);
+  if (!(length_squared(cross(s.dpdu, s.dpdv)) > 1e-12f * length_squared(sp.p) + 1e-20f)) {
+    const Frame f = Frame::from_z(s.ng);
+    s.dpdu = f.s;
+    s.dpdv = f.t;
+  }
+  return s;
+}
+
+}  // namespace torte

@@ -1,0 +1,68 @@
+// One level of geometry: triangle meshes and analytic shapes in a common space, with their acceleration
+// structures. The scene's own (top-level) shapes form one set; every instanced group is another, shared by all
+// its instances (see scene/scene.h). Meshes and quadrics are owned by the caller and must outlive the set.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "accel/bvh2.h"
+#include "accel/bvh_build.h"
+#include "accel/hit.h"
+#include "accel/wide_bvh.h"
+#include "geometry/mesh.h"
+#include "geometry/quadric.h"
+
+namespace torte {
+
+// Everything shading needs about a hit point.
+struct SurfaceHit {
+  Vec3f p;
+  Vec3f ng;  // unit geometric normal, front side as defined by the shape (winding / outward)
+  Vec3f ns;  // unit shading normal (interpolated vertex normals), on the same side as ng
+  Vec2f uv;
+  Vec3f dpdu, dpdv;  // surface tangents along the uv parameterization (textures, bump mapping)
+  uint32_t object;
+};
+
+class GeometrySet {
+ public:
+  // Builds the BVHs. Object i of this set is meshes[i] for i < meshes.size(), then the quadrics, numbered from
+  // object_base in the scene's object table.
+  void build(const std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics, uint32_t object_base);
+
+  uint32_t triangle_count() const { return uint32_t(tri_mesh_.size()); }
+  uint32_t primitive_count() const { return triangle_count() + uint32_t(quadrics_->size()); }
+  // Scene object of a primitive (Hit::prim: triangles first, then quadrics).
+  uint32_t object_of(uint32_t prim) const {
+    return object_base_ +
+           (prim < triangle_count() ? tri_mesh_[prim] : uint32_t(meshes_->size()) + (prim - triangle_count()));
+  }
+  Bounds3f bounds() const { return bounds_; }
+  bool empty() const { return primitive_count() == 0; }
+
+  // Closest hits (Hit::instance is left as it was) and occlusion, for `count` rays; `coherent` rays go through
+  // the packet kernels.
+  void intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const;
+  void occluded(const RaySoA& rays, size_t count, uint8_t* occluded, bool coherent) const;
+  // One ray: updates *hit when something closer than min(ray.t_max, hit->t) is hit.
+  bool intersect_one(const Ray& ray, Hit* hit) const;
+  bool occluded_one(const Ray& ray) const;
+  SurfaceHit surface(const Hit& hit) const;
+  size_t accel_bytes() const;
+
+ private:
+  void intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const;
+  const std::vector<TriangleMesh>* meshes_ = nullptr;
+  const std::vector<Quadric>* quadrics_ = nullptr;
+  uint32_t object_base_ = 0;
+  std::vector<uint32_t> tri_mesh_;    // triangle -> mesh
+  std::vector<uint32_t> mesh_first_;  // mesh -> first triangle
+  // All triangles of all meshes in one wide BVH (SIMD kernels, simd/traverse.h); the few analytic shapes in a
+  // scalar BVH2 of their own, traced after it with t_max clipped to the triangle hit.
+  WideBvh<kDefaultBvhWidth> tri_bvh_;
+  TriangleLeaves tri_leaves_;
+  Bvh2 quadric_bvh_;
+  Bounds3f bounds_;
+};
+
+}  // namespace torte

@@ -1,0 +1,89 @@
+// torte.material.* from Lua: every constructor builds a material that renders (no NaN), and bad parameters give
+// one clear error naming the function, the key and the script line. The error cases run in one script through
+// pcall (one process), plus one real failing run for the exit code and the one-line format.
+#include <catch2/catch.hpp>
+
+#include "test_support.h"
+
+using namespace torte::test;
+
+namespace {
+struct MaterialDir : TempDir {
+  explicit MaterialDir(const std::string& name) : TempDir("material", name) {}
+};
+}  // namespace
+
+TEST_CASE("materials: every constructor renders without NaN samples", "[lua][material]") {
+  MaterialDir dir("all");
+  const std::string script = dir.write("all.lua", R"(
+local torte = require "torte"
+local M = torte.material
+local materials = {
+  M.matte{color = {0.8, 0.5, 0.2}}, M.matte{color = 0.5, sigma = 20}, M.lambert{},
+  M.plastic{color = {0.6, 0.1, 0.1}, roughness = 0.3, eta = 1.6}, M.plastic{roughness = 0},
+  M.metal{metal = "gold", roughness = 0.2}, M.metal{metal = "Cu", roughness_u = 0.1, roughness_v = 0.4},
+  M.metal{eta = {0.2, 0.9, 1.1}, k = {3.9, 2.4, 2.1}, roughness = 0, distribution = "beckmann"},
+  M.mirror{color = 0.9}, M.glass{eta = 1.5}, M.glass{thin = true, color = {0.9, 1, 0.9}},
+  M.rough_glass{eta = 1.33, roughness = 0.3}, M.mix{a = M.mirror{}, b = M.matte{}, amount = 0.3},
+  M.bump{material = M.matte{}, height = 0.01},
+}
+local scene = torte.scene()
+for i, m in ipairs(materials) do
+  scene:add(torte.shape.sphere{radius = 0.4, transform = torte.translate((i - 7.5) * 0.9, 0, 0), material = m})
+end
+scene:add(torte.light.infinite{radiance = 1})
+scene:add(torte.light.point{position = {0, 5, -5}, intensity = 20})
+local img = torte.render{scene = scene, camera = torte.camera.orthographic{eye = {0, 0, -5}, extent = 14},
+                         width = 140, height = 10, spp = 4, max_depth = 8}
+print(("mean=%.4f"):format(img:mean()))
+)");
+  const Result r = run_torte(dir, {"--quiet", script}, 60);
+  check_no_crash(r);
+  INFO("stdout: " << r.out << "\nstderr: " << r.err);
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("mean="));
+  CHECK_THAT(r.err, !Catch::Contains("NaN/Inf samples were dropped"));
+}
+
+TEST_CASE("materials: bad parameters name the function, the key and the line", "[lua][material]") {
+  MaterialDir dir("bad");
+  // Each line is one call expected to fail; the script prints each error message on its own line.
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"M.plastic{roughness = -0.1}", {"torte.material.plastic", "'roughness'"}},
+      {"M.metal{roughness = 1.5}", {"torte.material.metal", "'roughness'"}},
+      {"M.glass{eta = 0}", {"torte.material.glass", "'eta'"}},
+      {"M.rough_glass{eta = -1.5}", {"torte.material.rough_glass", "'eta'"}},
+      {"M.matte{color = {1.5, 0, 0}}", {"torte.material.matte", "'color'"}},
+      {"M.matte{sigma = 120}", {"torte.material.matte", "'sigma'"}},
+      {"M.metal{metal = 'unobtainium'}", {"torte.material.metal", "'metal'", "gold"}},
+      {"M.metal{metal = 'gold', eta = 1}", {"torte.material.metal", "'metal'"}},
+      {"M.metal{distribution = 'phong'}", {"torte.material.metal", "'distribution'"}},
+      {"M.mix{a = M.matte{}, b = 3}", {"torte.material.mix", "'b'"}},
+      {"M.mix{a = M.matte{}, b = M.matte{}, amount = 2}", {"torte.material.mix", "'amount'"}},
+      {"M.bump{height = 1}", {"torte.material.bump", "'material'"}},
+      {"M.plastic{colour = 0.5}", {"torte.material.plastic", "'colour'"}},
+      {"M.plastic{roughness = torte.texture.uv{}}", {"torte.material.plastic", "'roughness'", "scalar"}},
+      {"M.matte{color = torte.texture.uv{}}", {"torte.material.matte", "'color'"}},
+  };
+  std::string script = "local torte = require 'torte'\nlocal M = torte.material\n";
+  for (const auto& [call, _] : cases)
+    script += "print((select(2, pcall(function() return " + call + " end)) or 'no error'):gsub('\\n', ' '))\n";
+  const std::string path = dir.write("bad.lua", script);
+  const Result r = run_torte(dir, {"--quiet", path}, 30);
+  check_no_crash(r);
+  const std::vector<std::string> lines = lines_of(r.out);
+  REQUIRE(lines.size() == cases.size());
+  for (size_t i = 0; i < cases.size(); ++i) {
+    INFO("call: " << cases[i].first << "\nmessage: " << lines[i]);
+    CHECK_THAT(lines[i], Catch::Contains(path + ":" + std::to_string(i + 3) + ":"));
+    for (const std::string& part : cases[i].second) CHECK_THAT(lines[i], Catch::Contains(part));
+  }
+}
+
+TEST_CASE("materials: a bad parameter stops the script with one line and a non-zero exit", "[lua][material]") {
+  MaterialDir dir("exit");
+  const std::string path = dir.write("bad.lua", "local torte = require 'torte'\n\nlocal g = torte.material.glass{eta = -2}\n");
+  const std::string line = check_error(run_torte(dir, {path}, 30));
+  CHECK_THAT(line, Catch::Contains(path + ":3:"));
+  CHECK_THAT(line, Catch::Contains("'eta'"));
+}
