@@ -188,12 +188,7 @@ void shade_per_hit(const ShadeContext& ctx, uint32_t i, reference::PerHitBsdf& h
         if (!f.is_black() && light_pdf > 0) {
           const float w = ls.delta ? 1.0f : power_heuristic(1, light_pdf, 1, b.pdf(wo_local, wi_local));
           const Rgb contribution = ps.beta[i] * f * ls.radiance * (w / light_pdf);
-          if (!contribution.is_black()) {
-            const Vec3f o = offset_origin(s.p, s.ng, ls.wi);
-            float t_max = kInfinity;
-            if (ls.distance != kInfinity) t_max = length(s.p + ls.wi * ls.distance - o) * (1 - 1e-4f);
-            ctx.shadows.push(o, ls.wi, t_max, contribution, i);
-          }
+          if (!contribution.is_black()) push_shadow_ray(ctx.shadows, s, ls.wi, ls.distance, contribution, i);
         }
       }
     }
@@ -205,28 +200,7 @@ void shade_per_hit(const ShadeContext& ctx, uint32_t i, reference::PerHitBsdf& h
     ps.depth[i] = kPathEnded;
     return;
   }
-  const Vec3f wi = frame.to_world(bs.wi);
-  if (!consistent_sides(s.ng, wo, wi, wo_local, bs.wi)) {
-    ps.depth[i] = kPathEnded;
-    return;
-  }
-  uint8_t flags = bs.is_specular() ? kPathSpecular : kPathScattered;
-  Rgb beta = ps.beta[i] * bs.weight();
-  if (bs.is_transmission()) ps.eta_scale[i] *= bs.eta * bs.eta;
-  if (depth + 1 >= ctx.settings.rr_depth) {
-    const float q = std::min(0.95f, (beta * ps.eta_scale[i]).max_component());
-    if (!(ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimRoulette)) < q)) {
-      ps.depth[i] = kPathEnded;
-      return;
-    }
-    beta = beta / q;
-  }
-  ps.beta[i] = beta;
-  ps.bsdf_pdf[i] = bs.pdf;
-  ps.flags[i] = flags;
-  ps.origin[i] = offset_origin(s.p, s.ng, wi);
-  ps.dir[i] = wi;
-  ps.depth[i] = uint16_t(depth + 1);
+  continue_path(ctx, i, frame, wo_local, bs);
 }
 
 enum class Variant { Wavefront, PerHit };

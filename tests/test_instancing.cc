@@ -10,16 +10,12 @@
 #include "geometry/mesh_io.h"
 #include "render/render.h"
 #include "scene/builder.h"
+#include "scene_helpers.h"
 
 using namespace torte;
+using namespace torte::test;
 
 namespace {
-
-std::shared_ptr<MaterialDesc> matte(float albedo) {
-  auto m = std::make_shared<MaterialDesc>();
-  m->color.value = Rgb(albedo);
-  return m;
-}
 
 // A few shapes of every kind, in group space: a sphere, a disk, a cube mesh and a smooth-normal torus-ish mesh
 // (a subdivided octahedron with vertex normals, so shading normals are exercised too).

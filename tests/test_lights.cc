@@ -21,8 +21,10 @@
 #include "light/sky.h"
 #include "render/render.h"
 #include "scene/builder.h"
+#include "scene_helpers.h"
 
 using namespace torte;
+using namespace torte::test;
 using torte::test::chi2_test;
 using torte::test::Chi2Result;
 
@@ -51,22 +53,6 @@ double integrate(const std::function<double(double)>& f, double a, double b) {
   double s = 0;
   for (int i = 0; i < 4; ++i) s += w[i] * f(mid + half * x[i]);
   return s * half;
-}
-
-std::shared_ptr<MaterialDesc> matte(float albedo) {
-  auto m = std::make_shared<MaterialDesc>();
-  m->color.value = Rgb(albedo);
-  return m;
-}
-
-ShapeDesc sphere_shape(float radius, const Transform& t, std::shared_ptr<MaterialDesc> m) {
-  ShapeDesc s;
-  s.kind = ShapeDesc::Kind::Quadric;
-  s.quadric.kind = QuadricKind::Sphere;
-  s.quadric.radius = radius;
-  s.transform = t;
-  s.material = std::move(m);
-  return s;
 }
 
 ShapeDesc quad_shape(float y, float half, std::shared_ptr<MaterialDesc> m) {
@@ -529,11 +515,7 @@ TEST_CASE("furnace: a constant environment map renders like the uniform infinite
     SceneBuilder b;
     b.add_shape(sphere_shape(1, Transform(), matte(0.8f)));
     b.add_light(light);
-    CameraDesc cam;
-    cam.kind = CameraKind::Orthographic;
-    cam.camera_to_world = look_at({0, 0, -5}, {0, 0, 0}, {0, 1, 0});
-    cam.extent = 2.5f;
-    b.set_camera(cam);
+    b.set_camera(furnace_camera());
     const auto scene = b.flatten();
     RenderSettings s;
     s.width = s.height = 24;

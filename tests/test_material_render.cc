@@ -8,8 +8,10 @@
 
 #include "render/render.h"
 #include "scene/builder.h"
+#include "scene_helpers.h"
 
 using namespace torte;
+using namespace torte::test;
 
 namespace {
 
@@ -39,11 +41,7 @@ double furnace(std::shared_ptr<const MaterialDesc> m, int spp = 64, int max_dept
   sky.kind = LightKind::Infinite;
   sky.radiance = Rgb(1);
   b.add_light(sky);
-  CameraDesc cam;
-  cam.kind = CameraKind::Orthographic;
-  cam.camera_to_world = look_at({0, 0, -5}, {0, 0, 0}, {0, 1, 0});
-  cam.extent = 2.5f;
-  b.set_camera(cam);
+  b.set_camera(furnace_camera());
   RenderSettings rs;
   rs.width = rs.height = 24;
   rs.spp = spp;

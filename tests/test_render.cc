@@ -11,33 +11,12 @@
 #include "core/rng.h"
 #include "render/render.h"
 #include "scene/builder.h"
+#include "scene_helpers.h"
 
 using namespace torte;
+using namespace torte::test;
 
 namespace {
-
-std::shared_ptr<MaterialDesc> matte(float albedo) {
-  auto m = std::make_shared<MaterialDesc>();
-  m->color.value = Rgb(albedo);
-  return m;
-}
-
-ShapeDesc sphere(float radius, const Transform& t, std::shared_ptr<MaterialDesc> m) {
-  ShapeDesc s;
-  s.kind = ShapeDesc::Kind::Quadric;
-  s.quadric.kind = QuadricKind::Sphere;
-  s.quadric.radius = radius;
-  s.transform = t;
-  s.material = std::move(m);
-  return s;
-}
-
-CameraDesc camera_at(Vec3f eye, Vec3f target, float fov) {
-  CameraDesc c;
-  c.camera_to_world = look_at(eye, target, {0, 1, 0});
-  c.fov_degrees = fov;
-  return c;
-}
 
 double mean_channel(const Image& img, int x0, int y0, int x1, int y1, int channel = 1) {
   double sum = 0;
@@ -59,12 +38,12 @@ std::shared_ptr<Scene> test_room() {
   room.transform = scale({2, 1.5f, 2});
   room.material = matte(0.6f);
   b.add_shape(room);
-  b.add_shape(sphere(0.4f, translate({-0.5f, -1.1f, 0.3f}), matte(0.8f)));
+  b.add_shape(sphere_shape(0.4f, translate({-0.5f, -1.1f, 0.3f}), matte(0.8f)));
   ShapeDesc block = room;
   block.transform = translate({0.7f, -1.2f, 0.2f}) * rotate(30, {0, 1, 0}) * scale({0.3f, 0.3f, 0.3f});
   block.material = matte(0.4f);
   b.add_shape(block);
-  ShapeDesc lamp = sphere(0.15f, translate({0.5f, 1.0f, 0.5f}), matte(0));
+  ShapeDesc lamp = sphere_shape(0.15f, translate({0.5f, 1.0f, 0.5f}), matte(0));
   lamp.emission = Rgb(20, 15, 10);
   b.add_shape(lamp);
   ShapeDesc panel;
@@ -113,16 +92,12 @@ std::vector<TileStats> tile_stats(const Image& img, int tile) {
 TEST_CASE("furnace: a Lambert sphere under a uniform infinite light renders its albedo", "[render][furnace]") {
   for (const float albedo : {0.25f, 0.8f}) {
     SceneBuilder b;
-    b.add_shape(sphere(1, Transform(), matte(albedo)));
+    b.add_shape(sphere_shape(1, Transform(), matte(albedo)));
     Light sky;
     sky.kind = LightKind::Infinite;
     sky.radiance = Rgb(1);
     b.add_light(sky);
-    CameraDesc cam;
-    cam.kind = CameraKind::Orthographic;
-    cam.camera_to_world = look_at({0, 0, -5}, {0, 0, 0}, {0, 1, 0});
-    cam.extent = 2.5f;
-    b.set_camera(cam);
+    b.set_camera(furnace_camera());
     const auto scene = b.flatten();
     RenderSettings s;
     s.width = s.height = 32;
@@ -146,7 +121,7 @@ TEST_CASE("furnace: a Lambert sphere under a uniform infinite light renders its 
 
 TEST_CASE("furnace: inside a closed emitting Lambert sphere, depth k sees 1 - 0.8^(k+1)", "[render][furnace]") {
   SceneBuilder b;
-  ShapeDesc shell = sphere(1, Transform(), matte(0.8f));
+  ShapeDesc shell = sphere_shape(1, Transform(), matte(0.8f));
   shell.emission = Rgb(0.2f);
   shell.two_sided = true;
   b.add_shape(shell);
@@ -170,7 +145,7 @@ TEST_CASE("furnace: inside a closed emitting Lambert sphere, depth k sees 1 - 0.
 
 TEST_CASE("the furnace test can fail: a wrong albedo is detected", "[render][furnace]") {
   SceneBuilder b;
-  ShapeDesc shell = sphere(1, Transform(), matte(0.7f));
+  ShapeDesc shell = sphere_shape(1, Transform(), matte(0.7f));
   shell.emission = Rgb(0.2f);
   shell.two_sided = true;
   b.add_shape(shell);
@@ -276,7 +251,7 @@ TEST_CASE("light selection follows emitted power (chi-square)", "[render][sampli
 
 TEST_CASE("NaN radiance never reaches the film and is counted", "[render]") {
   SceneBuilder b;
-  ShapeDesc lamp = sphere(1, Transform(), matte(0.5f));
+  ShapeDesc lamp = sphere_shape(1, Transform(), matte(0.5f));
   lamp.emission = Rgb(1);
   b.add_shape(lamp);
   b.set_camera(camera_at({0, 0, -3}, {0, 0, 0}, 40));

@@ -38,12 +38,21 @@ inline uint32_t bounce_dim(uint16_t depth, BounceDim d) {
   return kDimFirstBounce + uint32_t(depth) * kDimsPerBounce + d;
 }
 
+// IGI (render/igi.h): a hit that gathers light from the virtual point lights, recorded by shade_queue before
+// phase 4 moves its path on: its slot in the type's queue (for the BSDF and frame in ShadeScratch), the path and
+// the throughput at the hit.
+struct VplHit {
+  uint32_t slot, path;
+  Rgb beta;
+};
+
 struct ShadeContext {
   const Scene& scene;
   const RenderSettings& settings;
   const Sampler& sampler;
   PathState& paths;
   ShadowQueue& shadows;
+  std::vector<VplHit>* vpl_hits = nullptr;  // IGI only: receives the hits with a non-specular BSDF
 };
 
 // A light sample waiting for its BSDF evaluation (phase 2) and MIS weighting (phase 3).
@@ -72,6 +81,52 @@ struct ShadeScratch {
 // disagree (interpolated normals far from the facet), the light would leak through the surface: drop it.
 inline bool consistent_sides(Vec3f ng, Vec3f wo, Vec3f wi, Vec3f wo_local, Vec3f wi_local) {
   return (dot(wo, ng) * dot(wi, ng) > 0) == (wo_local.z * wi_local.z > 0);
+}
+
+// Queues the shadow ray from hit `s` towards a light point at `distance` along wi (kInfinity for lights at
+// infinity), carrying `contribution` to path i if unoccluded.
+inline void push_shadow_ray(ShadowQueue& shadows, const SurfaceHit& s, Vec3f wi, float distance, Rgb contribution,
+                            uint32_t path) {
+  const Vec3f o = offset_origin(s.p, s.ng, wi);
+  // Stop just short of the light point (measured from the offset origin) so the light does not shadow itself.
+  const float t_max = distance == kInfinity ? kInfinity : length(s.p + wi * distance - o) * (1 - 1e-4f);
+  shadows.push(o, wi, t_max, contribution, path);
+}
+
+// Continues path i with the BSDF sample `bs` (drawn in `frame`, wo_local being the path's outgoing direction):
+// checks the sides, updates throughput and flags, applies Russian roulette and sets the next ray. Ends the path
+// (depth = kPathEnded) when it stops here.
+inline void continue_path(const ShadeContext& ctx, uint32_t i, const Frame& frame, Vec3f wo_local,
+                          const BsdfSample& bs) {
+  PathState& ps = ctx.paths;
+  const SurfaceHit& s = ps.surface[i];
+  const uint16_t depth = ps.depth[i];
+  const Vec3f wi = frame.to_world(bs.wi);
+  if (!consistent_sides(s.ng, -ps.dir[i], wi, wo_local, bs.wi)) {
+    ps.depth[i] = kPathEnded;
+    return;
+  }
+  // `direct` follows specular chains only; a non-specular sample just looks for emission at its next hit.
+  uint8_t flags = bs.is_specular() ? kPathSpecular : kPathScattered;
+  if (ends_after_first_scatter(ctx.settings.integrator) && (ps.flags[i] & kPathScattered)) flags |= kPathScattered;
+  Rgb beta = ps.beta[i] * bs.weight();
+  if (bs.is_transmission()) ps.eta_scale[i] *= bs.eta * bs.eta;
+  // Russian roulette on the throughput without the eta^2 radiance scaling of refraction (pbrt-v4), so paths
+  // inside glass are not cut for carrying "too much" radiance; compensated by 1/q (unbiased).
+  if (depth + 1 >= ctx.settings.rr_depth) {
+    const float q = std::min(0.95f, (beta * ps.eta_scale[i]).max_component());
+    if (!(ctx.sampler.get_1d(ps.pixel[i], ps.sample[i], bounce_dim(depth, kDimRoulette)) < q)) {
+      ps.depth[i] = kPathEnded;
+      return;
+    }
+    beta = beta / q;
+  }
+  ps.beta[i] = beta;
+  ps.bsdf_pdf[i] = bs.pdf;
+  ps.flags[i] = flags;
+  ps.origin[i] = offset_origin(s.p, s.ng, wi);
+  ps.dir[i] = wi;
+  ps.depth[i] = uint16_t(depth + 1);
 }
 
 namespace detail {
@@ -162,21 +217,18 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
     const float weight = c.delta ? 1.0f : power_heuristic(1, c.light_pdf, 1, sc.pdf[k]);
     const Rgb contribution = ps.beta[i] * f * c.radiance * (weight / c.light_pdf);
     if (contribution.is_black()) continue;
-    const SurfaceHit& s = ps.surface[i];
-    const Vec3f o = offset_origin(s.p, s.ng, c.wi);
-    float t_max = kInfinity;
-    if (c.distance != kInfinity) {
-      // Stop just short of the light point (measured from the offset origin) so the light does not shadow itself.
-      t_max = length(s.p + c.wi * c.distance - o) * (1 - 1e-4f);
-    }
-    ctx.shadows.push(o, c.wi, t_max, contribution, i);
+    push_shadow_ray(ctx.shadows, ps.surface[i], c.wi, c.distance, contribution, i);
   }
 
+  // IGI: the hits that gather VPL light (every hit shaded here is a first non-specular one: igi, like direct,
+  // ends paths after they scatter). igi.h gathers after shading, with the BSDFs and frames left in `sc`.
+  if (ctx.vpl_hits)
+    for (size_t k = 0; k < n; ++k)
+      if (sc.bsdf[k].has_non_specular()) ctx.vpl_hits->push_back({uint32_t(k), queue[k], ps.beta[queue[k]]});
+
   // Phase 4: BSDF sampling for the paths' next rays.
-  const bool direct = ctx.settings.integrator == IntegratorKind::Direct;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t i = queue[k];
-    const SurfaceHit& s = ps.surface[i];
     const uint16_t depth = ps.depth[i];
     const uint32_t px = ps.pixel[i], si = ps.sample[i];
     BsdfSample bs;
@@ -188,33 +240,7 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
       ps.depth[i] = kPathEnded;
       continue;
     }
-    const Vec3f wi = sc.frame[k].to_world(bs.wi);
-    const Vec3f wo = -ps.dir[i];
-    if (!consistent_sides(s.ng, wo, wi, sc.wo_local[k], bs.wi)) {
-      ps.depth[i] = kPathEnded;
-      continue;
-    }
-    // `direct` follows specular chains only; a non-specular sample just looks for emission at its next hit.
-    uint8_t flags = bs.is_specular() ? kPathSpecular : kPathScattered;
-    if (direct && (ps.flags[i] & kPathScattered)) flags |= kPathScattered;
-    Rgb beta = ps.beta[i] * bs.weight();
-    if (bs.is_transmission()) ps.eta_scale[i] *= bs.eta * bs.eta;
-    // Russian roulette on the throughput without the eta^2 radiance scaling of refraction (pbrt-v4), so paths
-    // inside glass are not cut for carrying "too much" radiance; compensated by 1/q (unbiased).
-    if (depth + 1 >= ctx.settings.rr_depth) {
-      const float q = std::min(0.95f, (beta * ps.eta_scale[i]).max_component());
-      if (!(ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimRoulette)) < q)) {
-        ps.depth[i] = kPathEnded;
-        continue;
-      }
-      beta = beta / q;
-    }
-    ps.beta[i] = beta;
-    ps.bsdf_pdf[i] = bs.pdf;
-    ps.flags[i] = flags;
-    ps.origin[i] = offset_origin(s.p, s.ng, wi);
-    ps.dir[i] = wi;
-    ps.depth[i] = uint16_t(depth + 1);
+    continue_path(ctx, i, sc.frame[k], sc.wo_local[k], bs);
   }
 }
 

@@ -1,0 +1,45 @@
+// Small scene-building helpers shared by the renderer tests (SceneBuilder descriptions, not Lua).
+#pragma once
+#include <memory>
+
+#include "scene/builder.h"
+
+namespace torte::test {
+
+// A Lambert material of grey albedo.
+inline std::shared_ptr<MaterialDesc> matte(float albedo) {
+  auto m = std::make_shared<MaterialDesc>();
+  m->color.value = Rgb(albedo);
+  return m;
+}
+
+// A quadric sphere of `radius` placed by `t`.
+inline ShapeDesc sphere_shape(float radius, const Transform& t, std::shared_ptr<MaterialDesc> m) {
+  ShapeDesc s;
+  s.kind = ShapeDesc::Kind::Quadric;
+  s.quadric.kind = QuadricKind::Sphere;
+  s.quadric.radius = radius;
+  s.transform = t;
+  s.material = std::move(m);
+  return s;
+}
+
+// A perspective camera at `eye` looking at `target`, +y up, vertical field of view `fov` degrees.
+inline CameraDesc camera_at(Vec3f eye, Vec3f target, float fov) {
+  CameraDesc c;
+  c.camera_to_world = look_at(eye, target, {0, 1, 0});
+  c.fov_degrees = fov;
+  return c;
+}
+
+// The furnace view: an orthographic camera on -z looking at the origin, 2.5 units across, so a unit sphere at
+// the origin fills the middle of the image with background in the corners.
+inline CameraDesc furnace_camera() {
+  CameraDesc c;
+  c.kind = CameraKind::Orthographic;
+  c.camera_to_world = look_at({0, 0, -5}, {0, 0, 0}, {0, 1, 0});
+  c.extent = 2.5f;
+  return c;
+}
+
+}  // namespace torte::test
