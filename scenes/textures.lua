@@ -23,8 +23,9 @@ scene:add(torte.shape.polygon{points = {{-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}
                               material = M.matte{color = floor_tex}})
 
 -- Marble: turbulence through a spline of colours, in plastic.
-local marble = X.spline{colors = {{0.92, 0.9, 0.86}, {0.8, 0.78, 0.75}, {0.35, 0.33, 0.36}, {0.9, 0.88, 0.84}}}
-               .. X.turbulence{octaves = 6} .. X.xyz{transform = S(0.35, 0.35, 0.35)}
+local marble = X.spline{colors = {{0.9, 0.89, 0.86}, {0.85, 0.84, 0.8}, {0.2, 0.2, 0.24}, {0.88, 0.87, 0.84}},
+                        positions = {0, 0.3, 0.45, 0.6}}
+               .. X.turbulence{octaves = 6} .. X.xyz{transform = S(0.7, 0.7, 0.7)}
 scene:add(torte.shape.sphere{radius = 0.6, transform = T(1.9, 0.6, 0.6),
                              material = M.plastic{color = marble, roughness = 0.15}})
 
@@ -35,9 +36,9 @@ scene:add(torte.shape.cube{transform = T(0.55, 0.45, 1.3) * R(25, {0, 1, 0}) * S
 
 -- Wood-like grain: fBm stretched along the log's axis (y) through a spline of browns.
 local rings = X.spline{colors = {{0.55, 0.33, 0.15}, {0.78, 0.52, 0.26}, {0.45, 0.26, 0.1}, {0.7, 0.45, 0.2}}}
-              .. X.fbm{octaves = 4} .. X.xyz{transform = S(0.12, 1.5, 0.12)}
+              .. X.fbm{octaves = 4} .. X.xyz{transform = S(0.15, 2.5, 0.15)}
 scene:add(torte.shape.cylinder{radius = 0.35, z_min = 0, z_max = 1.1, transform = T(-0.4, 0, 1.9) * R(-90, {1, 0, 0}),
-                               material = M.plastic{color = rings, roughness = 0.3}})
+                               material = M.matte{color = rings}})
 
 -- Bump mapping: a copper sphere hammered by Perlin noise.
 local dents = X.perlin{} .. X.xyz{transform = S(0.08, 0.08, 0.08)}
