@@ -64,7 +64,7 @@ Recording* record() {
       SurfaceHit s = scene.surface(Ray{ray_in.o, ray_in.d, hit.t}, hit);
       const float footprint = camera.footprint_at_origin() + camera.spread_angle() * hit.t;
       const MaterialRef m = resolve_material(
-          scene, scene.objects[s.object].material, s, footprint,
+          scene, scene.material_of(s), s, footprint,
           [&] { return r->sampler.get_1d(px, si, bounce_dim(depth, kDimMaterialMix)); }, px);
       const size_t i = ps.size();
       ps.resize(i + 1);

@@ -169,11 +169,19 @@ int l_render(lua_State* L) {
     s.integrator = IntegratorKind::Path;
   } else if (integrator == "direct") {
     s.integrator = IntegratorKind::Direct;
+  } else if (integrator == "igi") {
+    s.integrator = IntegratorKind::Igi;
   } else {
-    kw.fail("integrator", "must be \"path\" or \"direct\", got \"" + integrator + "\"");
+    kw.fail("integrator", "must be \"path\", \"direct\" or \"igi\", got \"" + integrator + "\"");
   }
-  // The seed's direct-lighting renderer samples every light at every hit; path tracing picks one by power.
-  s.sample_all_lights = kw.boolean("sample_all_lights", s.integrator == IntegratorKind::Direct);
+  // The seed's direct-lighting renderer samples every light at every hit; path tracing picks one by power. igi
+  // handles direct light as direct does.
+  s.sample_all_lights = kw.boolean("sample_all_lights", ends_after_first_scatter(s.integrator));
+  // Instant global illumination (render/igi.h); accepted (and checked) with any integrator, used by igi only.
+  s.vpl_sets = kw.integer("vpl_sets", s.vpl_sets);
+  s.light_paths = kw.integer("light_paths", s.light_paths);
+  s.g_limit = float(kw.number("g_limit", s.g_limit));
+  s.vpl_roulette = float(kw.number("vpl_roulette", s.vpl_roulette));
   const int seed = kw.integer("seed", 0);
   if (seed < 0) kw.fail("seed", "must be a non-negative integer");
   s.seed = uint64_t(seed);
@@ -182,6 +190,10 @@ int l_render(lua_State* L) {
   if (s.width <= 0 || s.height <= 0) kw.fail("width", "and 'height' must be positive");
   if (s.spp <= 0) kw.fail("spp", "must be positive");
   if (s.max_depth < 0) kw.fail("max_depth", "must be non-negative");
+  if (s.vpl_sets < 1 || s.vpl_sets > 65536) kw.fail("vpl_sets", "must be in [1, 65536]");
+  if (s.light_paths < 1 || s.light_paths > (1 << 24)) kw.fail("light_paths", "must be in [1, 16777216]");
+  if (!(s.g_limit > 0)) kw.fail("g_limit", "must be positive (relative to 1/R^2, R the scene's bounding radius)");
+  if (!(s.vpl_roulette >= 0 && s.vpl_roulette <= 1)) kw.fail("vpl_roulette", "must be in [0, 1]");
   if (ctx.spp_override > 0) s.spp = ctx.spp_override;
   if (ctx.seed_override >= 0) s.seed = uint64_t(ctx.seed_override);
   if (ctx.interrupted) throw Error("torte.render: not started, the run was interrupted");

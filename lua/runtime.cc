@@ -14,7 +14,7 @@ struct EmbeddedLua {
   const char* name;
   const char* source;
 };
-extern const EmbeddedLua kEmbeddedLua[];  // generated from lua/torte/*.lua by scripts/embed-lua.cmake
+extern const EmbeddedLua kEmbeddedLua[];  // generated from lua/torte/*.lua and lua/minecraft/*.lua by scripts/embed-lua.cmake
 }  // namespace torte
 
 namespace torte::lua {
@@ -56,6 +56,8 @@ void open_torte(lua_State* L, const RunOptions& options) {
   const int torte_index = lua_gettop(L);
   lua_pushstring(L, TORTE_VERSION);
   lua_setfield(L, torte_index, "version");
+  lua_pushboolean(L, options.quiet);  // --quiet: Lua libraries print no progress either (lua/minecraft)
+  lua_setfield(L, torte_index, "quiet");
   lua_newtable(L);
   for (const auto& [key, value] : options.args) {
     push_arg_value(L, value);
@@ -69,6 +71,8 @@ void open_torte(lua_State* L, const RunOptions& options) {
   open_render(L, torte_index);
   open_meshes(L, torte_index);
   open_textures(L, torte_index);
+  open_voxels(L, torte_index);
+  open_data(L, torte_index);
   // `torte` is a global and also what require "torte" returns.
   lua_pushvalue(L, torte_index);
   lua_setglobal(L, "torte");

@@ -45,6 +45,8 @@ void open_cameras(lua_State* L, int torte_index);    // torte.camera.*
 void open_render(lua_State* L, int torte_index);     // torte.scene, torte.render, torte.filter.*, images
 void open_meshes(lua_State* L, int torte_index);     // torte.mesh.*, torte.clock
 void open_textures(lua_State* L, int torte_index);   // torte.texture.* (lua/bind_texture.cc)
+void open_voxels(lua_State* L, int torte_index);     // torte.voxel.*, torte.shape.voxels (lua/bind_voxel.cc)
+void open_data(lua_State* L, int torte_index);       // torte.data.*: files, zlib/gzip, NBT, bit fields (lua/bind_data.cc)
 // torte.shape.mesh's mesh=<torte.mesh> or file="path" (loaded now); nullptr when neither key is given.
 std::shared_ptr<const TriangleMesh> mesh_argument(KwArgs& kw);
 

@@ -2,12 +2,15 @@
 -- Cornell Program of Computer Graphics). Units are millimetres; +x points to the image's left.
 --
 --   torte scenes/cornell-box.lua [width=512] [height=512] [spp=256] [max_depth=64]
---                                [integrator=path|direct] [output=out/cornell-box.exr]
+--                                [integrator=path|direct|igi] [output=out/cornell-box.exr]
+--                                [vpl_sets=4] [light_paths=64] [g_limit=20] [vpl_roulette=0.25]   (igi only)
 local torte = require "torte"
 
 local opt = torte.options{
   width = 512, height = 512, spp = 256, max_depth = 64, integrator = "path",
   output = "out/cornell-box.exr", seed = 0,
+  -- instant global illumination (integrator=igi); the defaults of torte.render
+  vpl_sets = 4, light_paths = 64, g_limit = 20, vpl_roulette = 0.25,
 }
 
 local white = torte.material.matte{color = {0.73, 0.73, 0.73}}
@@ -61,6 +64,7 @@ local image = torte.render{
   scene = scene, camera = camera,
   width = opt.width, height = opt.height, spp = opt.spp, max_depth = opt.max_depth,
   integrator = opt.integrator, seed = opt.seed,
+  vpl_sets = opt.vpl_sets, light_paths = opt.light_paths, g_limit = opt.g_limit, vpl_roulette = opt.vpl_roulette,
   filter = torte.filter.box{radius = 0.5},
 }
 torte.save(image, opt.output)

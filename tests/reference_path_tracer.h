@@ -188,7 +188,7 @@ class PathTracer {
 
     const uint64_t mix_seed = rng.next_u32();
     const MaterialRef m =
-        resolve_material(scene, object.material, s, 0.0f, [&rng] { return rng.next_float(); }, mix_seed);
+        resolve_material(scene, scene.material_of(s), s, 0.0f, [&rng] { return rng.next_float(); }, mix_seed);
     PerHitBsdf holder;
     const BsdfInterface& bsdf = holder.build(scene, m, texture_context(s, 0.0f), opt_);
     const Frame frame = Frame::from_z(s.ns);

@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "render/igi.h"
 #include "render/wavefront.h"
 
 namespace torte {
@@ -47,6 +48,10 @@ void validate(const Scene& scene, const RenderSettings& s) {
   if (s.spp <= 0) throw Error("spp must be positive");
   if (s.max_depth < 0 || s.max_depth > 10000) throw Error("max_depth must be in [0, 10000]");
   if (s.tile_size <= 0) throw Error("tile size must be positive");
+  if (s.vpl_sets < 1 || s.vpl_sets > 65536) throw Error("vpl_sets must be in [1, 65536]");
+  if (s.light_paths < 1 || s.light_paths > (1 << 24)) throw Error("light_paths must be in [1, 2^24]");
+  if (!(s.g_limit > 0)) throw Error("g_limit must be positive (infinity disables the clamp)");
+  if (!(s.vpl_roulette >= 0 && s.vpl_roulette <= 1)) throw Error("vpl_roulette must be in [0, 1]");
 }
 
 }  // namespace
@@ -59,6 +64,9 @@ RenderOutput render(const Scene& scene, const RenderSettings& settings, Progress
   const Sampler sampler(settings.seed);
   const std::vector<Tile> tiles = make_tiles(settings.width, settings.height, settings.tile_size);
   std::vector<PixelSum> film(size_t(settings.width) * settings.height);
+  // IGI's preprocess: the virtual point lights, shared read-only by every tile.
+  const VplStore vpls = settings.integrator == IntegratorKind::Igi ? generate_vpls(scene, settings) : VplStore{};
+  const VplStore* vpl_ptr = settings.integrator == IntegratorKind::Igi ? &vpls : nullptr;
 
   struct Worker {
     std::unique_ptr<WavefrontRenderer> renderer;
@@ -76,7 +84,7 @@ RenderOutput render(const Scene& scene, const RenderSettings& settings, Progress
     if (cancelled()) break;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       Worker& w = workers.local();
-      if (!w.renderer) w.renderer = std::make_unique<WavefrontRenderer>(scene, camera, settings, sampler);
+      if (!w.renderer) w.renderer = std::make_unique<WavefrontRenderer>(scene, camera, settings, sampler, vpl_ptr);
       for (size_t t = range.begin(); t != range.end(); ++t) {
         if (cancelled()) return;
         const Tile& tile = tiles[t];
@@ -96,6 +104,7 @@ RenderOutput render(const Scene& scene, const RenderSettings& settings, Progress
   }
 
   RenderOutput out;
+  out.stats.extension_rays += vpls.light_rays;  // IGI's light paths
   for (const Worker& w : workers) {
     out.stats.camera_rays += w.stats.camera_rays;
     out.stats.extension_rays += w.stats.extension_rays;

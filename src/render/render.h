@@ -15,7 +15,14 @@ namespace torte {
 enum class IntegratorKind : uint8_t {
   Path,    // path tracing: next-event estimation + BSDF sampling with MIS, Russian roulette
   Direct,  // direct lighting only (MIS between light and BSDF sampling); equals Path at max_depth 1
+  Igi,     // instant global illumination (render/igi.h): Direct plus indirect light from virtual point lights
 };
+
+// Direct and Igi follow camera paths through specular chains only: they end at the next hit after the first
+// non-specular scattering event (which still adds the emission found there).
+inline bool ends_after_first_scatter(IntegratorKind k) {
+  return k == IntegratorKind::Direct || k == IntegratorKind::Igi;
+}
 
 struct RenderSettings {
   int width = 512, height = 512;
@@ -28,6 +35,17 @@ struct RenderSettings {
   int rr_depth = 3;                // Russian roulette from this many scattering events on
   bool sample_all_lights = false;  // one shadow ray per light at every vertex instead of one light by power
   int tile_size = 16;
+  // Instant global illumination (IntegratorKind::Igi, render/igi.h).
+  int vpl_sets = 4;            // independent VPL sets; each camera sample gathers from one of them
+  int light_paths = 64;        // light paths traced per set (each leaves a VPL at every non-specular hit)
+  // Clamp of the geometry term |cos_x| |cos_y| / d^2 between a shading point and a VPL, relative to the scene:
+  // G <= g_limit / R^2 with R the radius of the scene's bounding sphere (scale-invariant). Infinity: no clamp
+  // (unbiased, spiky); small values remove the spikes near corners at the price of darker inter-reflections.
+  float g_limit = 20;
+  // Russian roulette on weak VPL paths: once a light path's throughput falls below vpl_roulette times what it
+  // left the light with, it continues with probability (throughput / start) / vpl_roulette (reweighted, so
+  // unbiased). 0 disables it (paths then end at max_depth or when they leave the scene).
+  float vpl_roulette = 0.25f;
 };
 
 struct RenderStats {

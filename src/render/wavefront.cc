@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/rng.h"
+#include "render/igi.h"
 #include "render/material_resolve.h"
 #include "render/shade.h"
 
@@ -27,6 +28,7 @@ void WavefrontRenderer::render(const std::vector<SampleRequest>& requests, std::
     add_emission_and_queue(stats);
     shade();
     trace_shadows(stats);
+    if (vpls_) gather_vpls(stats);  // IGI: indirect light from the VPLs (render/igi.h)
     compact();
   }
   for (size_t i = 0; i < paths_.size(); ++i) {
@@ -106,7 +108,7 @@ void WavefrontRenderer::trace(RenderStats& stats) {
 void WavefrontRenderer::add_emission_and_queue(RenderStats&) {
   const Scene& scene = scene_;
   const bool all_lights = settings_.sample_all_lights;
-  const bool direct = settings_.integrator == IntegratorKind::Direct;
+  const bool direct = ends_after_first_scatter(settings_.integrator);  // direct and igi
   // MIS weight of emission found by BSDF sampling against the light-sampling strategy that could have found it.
   auto emission_weight = [&](uint32_t i, int light_index, float light_pdf) {
     // Seen by the camera or through a delta lobe: no light sampling competes.
@@ -151,8 +153,10 @@ void WavefrontRenderer::add_emission_and_queue(RenderStats&) {
     paths_.surface[i] = s;
     paths_.footprint[i] += spread_ * hit.t;  // ray-cone width at the hit
     const uint32_t px = paths_.pixel[i], si = paths_.sample[i];
+    // Voxel faces and cell shapes carry their own material (SurfaceHit::material, -1 = the object's).
+    const MaterialRef base = scene.material_of(s);
     const MaterialRef m = resolve_material(
-        scene, object.material, paths_.surface[i], paths_.footprint[i],
+        scene, base, paths_.surface[i], paths_.footprint[i],
         [&] { return sampler_.get_1d(px, si, bounce_dim(paths_.depth[i], kDimMaterialMix)); },
         mix_bits((uint64_t(px) << 32 | si) ^ (uint64_t(paths_.depth[i]) << 56)));
     paths_.material[i] = m;
@@ -173,25 +177,45 @@ void WavefrontRenderer::add_emission_and_queue(RenderStats&) {
 
 void WavefrontRenderer::shade() {
   shadows_.clear();
-  const ShadeContext ctx{scene_, settings_, sampler_, paths_, shadows_};
+  vpl_hits_.clear();
+  const ShadeContext ctx{scene_, settings_, sampler_, paths_, shadows_, vpls_ ? &vpl_hits_ : nullptr};
   auto queue = [&](MaterialType t) {
     return std::span<const uint32_t>(material_queue_.data() + queue_begin_[int(t)],
                                      queue_begin_[int(t) + 1] - queue_begin_[int(t)]);
   };
   // One kernel per shaded material type, each over its contiguous queue.
   [&]<size_t... T>(std::index_sequence<T...>) {
-    (shade_queue<MaterialType(T)>(ctx, queue(MaterialType(T)), std::get<T>(scratch_)), ...);
+    ((shade_queue<MaterialType(T)>(ctx, queue(MaterialType(T)), std::get<T>(scratch_)),
+      vpl_hits_end_[T] = vpl_hits_.size()), ...);
   }(std::make_index_sequence<kShadedMaterialTypeCount>{});
 }
 
-void WavefrontRenderer::trace_shadows(RenderStats& stats) {
+void WavefrontRenderer::gather_vpls(RenderStats& stats) {
+  shadows_.clear();
+  auto flush = [&] {
+    trace_shadows(stats, true);  // runs of rays from one tile towards one VPL: packets
+    shadows_.clear();
+  };
+  auto hits = [&](size_t t) {
+    const size_t begin = t == 0 ? 0 : vpl_hits_end_[t - 1];
+    return std::span<const VplHit>(vpl_hits_.data() + begin, vpl_hits_end_[t] - begin);
+  };
+  [&]<size_t... T>(std::index_sequence<T...>) {
+    (torte::gather_vpls<MaterialType(T)>(*vpls_, std::get<T>(scratch_), hits(T), paths_, settings_.seed, shadows_,
+                                         vpl_order_, flush),
+     ...);
+  }(std::make_index_sequence<kShadedMaterialTypeCount>{});
+  flush();
+}
+
+void WavefrontRenderer::trace_shadows(RenderStats& stats, bool coherent) {
   const size_t n = shadows_.size();
   if (n == 0) return;
   const RaySoA rays = gather_rays(n, [&](size_t k) {
     return Ray{shadows_.origin[k], shadows_.dir[k], shadows_.t_max[k]};
   });
   occluded_buf_.resize(n);
-  scene_.occluded(rays, n, occluded_buf_.data(), false);
+  scene_.occluded(rays, n, occluded_buf_.data(), coherent);
   for (size_t k = 0; k < n; ++k)
     if (!occluded_buf_[k]) paths_.radiance[shadows_.path[k]] += shadows_.contribution[k];
   stats.shadow_rays += n;

@@ -14,6 +14,8 @@
 
 namespace torte {
 
+struct VplStore;  // render/igi.h
+
 struct SampleRequest {
   uint32_t pixel;   // linear index
   uint32_t sample;  // index within the pixel
@@ -27,8 +29,10 @@ struct PixelSum {
 
 class WavefrontRenderer {
  public:
-  WavefrontRenderer(const Scene& scene, const Camera& camera, const RenderSettings& settings, const Sampler& sampler)
-      : scene_(scene), camera_(camera), settings_(settings), sampler_(sampler) {}
+  // `vpls` (IntegratorKind::Igi only, else null): the virtual point lights camera hits gather from.
+  WavefrontRenderer(const Scene& scene, const Camera& camera, const RenderSettings& settings, const Sampler& sampler,
+                    const VplStore* vpls = nullptr)
+      : scene_(scene), camera_(camera), settings_(settings), sampler_(sampler), vpls_(vpls) {}
   // Renders the requested samples and adds them to film (indexed by pixel). Counts rays and dropped samples.
   void render(const std::vector<SampleRequest>& requests, std::vector<PixelSum>& film, RenderStats& stats);
 
@@ -37,13 +41,18 @@ class WavefrontRenderer {
   void trace(RenderStats& stats);
   void add_emission_and_queue(RenderStats& stats);
   void shade();
-  void trace_shadows(RenderStats& stats);
+  void trace_shadows(RenderStats& stats, bool coherent = false);
+  void gather_vpls(RenderStats& stats);  // IGI: VPL light at the hits shade() recorded, traced in batches
   void compact();
 
   const Scene& scene_;
   const Camera& camera_;
   const RenderSettings& settings_;
   const Sampler& sampler_;
+  const VplStore* vpls_;
+  std::vector<VplHit> vpl_hits_;                          // IGI: hits recorded by shade(), grouped by type
+  size_t vpl_hits_end_[kShadedMaterialTypeCount] = {};   // end of each type's group in vpl_hits_
+  std::vector<uint32_t> vpl_order_;                       // IGI: gather scratch
   int max_depth_ = 0;
   float spread_ = 0;  // camera ray-cone spread angle
   PathState paths_;

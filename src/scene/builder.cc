@@ -31,7 +31,54 @@ struct SceneBuilder::Flattening {
       if (s.kind == ShapeDesc::Kind::Mesh) out.push_back(&s);
     for (const ShapeDesc& s : shapes)
       if (s.kind == ShapeDesc::Kind::Quadric) out.push_back(&s);
+    for (const ShapeDesc& s : shapes)
+      if (s.kind == ShapeDesc::Kind::Voxel) out.push_back(&s);
     return out;
+  }
+
+  // A voxel grid's accelerator: materials of its ids go to the scene's override table, cell shapes become
+  // GeometrySets in unit-cell space.
+  VoxelGridAccel voxel_grid(const ShapeDesc& s) {
+    if (!s.voxels || !s.voxels->tree) throw Error("internal: voxel shape without a grid");
+    if (!s.emission.is_black())
+      throw Error("voxel grids cannot be area lights; give the emitting ids an emissive look instead");
+    const VoxelShape& v = *s.voxels;
+    VoxelGridAccel g;
+    g.tree = v.tree;
+    g.to_set = s.transform;
+    int lo = 0, hi = -1;
+    for (const VoxelCubeDef& c : v.cubes) {
+      lo = hi < lo ? c.id : std::min(lo, int(c.id));
+      hi = std::max(hi, int(c.id));
+    }
+    if (hi >= lo) {
+      g.id_lo = lo;
+      g.face_material.assign(size_t(hi - lo + 1) * 6, -1);
+      for (const VoxelCubeDef& c : v.cubes)
+        for (int f = 0; f < 6; ++f) {
+          if (!c.faces[size_t(f)]) continue;
+          g.face_material[size_t(c.id - lo) * 6 + size_t(f)] = int32_t(scene.material_overrides.size());
+          scene.material_overrides.push_back(material(c.faces[size_t(f)]));
+        }
+    }
+    for (const VoxelCellDef& c : v.cells) {
+      if (!c.shapes) continue;
+      if (!c.shapes->instances_.empty() || !c.shapes->lights_.empty())
+        throw Error("voxel cell shape " + std::to_string(c.id) + ": the group may hold shapes only (no instances, lights)");
+      auto cell = std::make_shared<VoxelCellGeometry>();
+      for (const ShapeDesc* sh : ordered(c.shapes->shapes_)) {
+        if (sh->kind == ShapeDesc::Kind::Voxel) throw Error("voxel cell shapes cannot hold voxel grids");
+        if (!sh->emission.is_black()) throw Error("voxel cell shapes cannot emit (area lights are not instanced)");
+        place(*sh, cell->meshes, cell->quadrics);
+        cell->object_material.push_back(int32_t(scene.material_overrides.size()));
+        scene.material_overrides.push_back(material(sh->material));
+      }
+      cell->build();
+      const size_t k = size_t(-int(c.id));
+      if (g.cells.size() <= k) g.cells.resize(k + 1);
+      g.cells[k] = std::move(cell);
+    }
+    return g;
   }
 
   static void place(const ShapeDesc& s, std::vector<TriangleMesh>& meshes, std::vector<Quadric>& quadrics) {
@@ -55,7 +102,10 @@ struct SceneBuilder::Flattening {
       if (!s->emission.is_black())
         throw Error("a group placed as an instance holds an emitting shape; area lights cannot be instanced, add "
                     "the emitter to the scene itself");
-      place(*s, proto->meshes, proto->quadrics);
+      if (s->kind == ShapeDesc::Kind::Voxel)
+        proto->grids.push_back(voxel_grid(*s));
+      else
+        place(*s, proto->meshes, proto->quadrics);
       objects.push_back({material(s->material), -1});
     }
     const uint32_t index = uint32_t(scene.prototypes.size());
@@ -85,6 +135,11 @@ std::shared_ptr<Scene> SceneBuilder::flatten() const {
 
   for (const ShapeDesc* s : Flattening::ordered(shapes_)) {
     const uint32_t object = uint32_t(scene->objects.size());
+    if (s->kind == ShapeDesc::Kind::Voxel) {
+      scene->grids.push_back(f.voxel_grid(*s));
+      scene->objects.push_back({f.material(s->material), -1});
+      continue;
+    }
     Flattening::place(*s, scene->meshes, scene->quadrics);
     SceneObject obj;
     obj.material = f.material(s->material);

@@ -6,13 +6,15 @@
 
 #include "scene/material_desc.h"
 #include "scene/scene.h"
+#include "voxel/voxel_shape.h"
 
 namespace torte {
 
 struct ShapeDesc {
-  enum class Kind { Mesh, Quadric } kind = Kind::Mesh;
+  enum class Kind { Mesh, Quadric, Voxel } kind = Kind::Mesh;
   std::shared_ptr<const TriangleMesh> mesh;  // object space, shared between placements
   Quadric quadric;                           // object-space parameters; its transform is set at flatten
+  std::shared_ptr<const VoxelShape> voxels;  // Kind::Voxel: the built grid and its id definitions (cell space)
   Transform transform;                       // object-to-world
   std::shared_ptr<const MaterialDesc> material;
   Rgb emission;            // diffuse area light radiance; black = not a light

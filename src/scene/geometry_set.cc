@@ -6,12 +6,24 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.h"
 #include "traverse.h"
 
 namespace torte {
 
+namespace {
+const std::vector<VoxelGridAccel> kNoGrids;
+}  // namespace
+
 void GeometrySet::build(const std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
                         uint32_t object_base) {
+  build(meshes, quadrics, kNoGrids, object_base);
+}
+
+void GeometrySet::build(const std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
+                        const std::vector<VoxelGridAccel>& grids, uint32_t object_base) {
+  if (grids.size() > kMaxVoxelGridsPerSet) throw Error("more than 2048 voxel grids in one scene or group");
+  grids_ = &grids;
   meshes_ = &meshes;
   quadrics_ = &quadrics;
   object_base_ = object_base;
@@ -42,6 +54,7 @@ void GeometrySet::build(const std::vector<TriangleMesh>& meshes, const std::vect
   for (size_t q = 0; q < quadrics.size(); ++q) quadric_bounds[q] = world_bounds(quadrics[q]);
   quadric_bvh_.build(quadric_bounds);
   bounds_ = merge(tri_bvh_.bounds, quadric_bvh_.bounds());
+  for (const VoxelGridAccel& g : grids) bounds_.extend(g.bounds());
 }
 
 namespace {
@@ -90,6 +103,16 @@ void GeometrySet::intersect(const RaySoA& rays, size_t count, Hit* hits, bool co
     std::fill(hits, hits + count, Hit{});
   }
   if (!quadrics_->empty()) intersect_quadrics(rays, count, hits);
+  if (grid_count() > 0) intersect_grids(rays, count, hits);
+}
+
+// Voxel grids, one ray at a time (scalar kd-tree traversal), after the triangles and quadrics with t_max
+// clipped to their hit.
+void GeometrySet::intersect_grids(const RaySoA& rays, size_t count, Hit* hits) const {
+  for (size_t i = 0; i < count; ++i) {
+    const Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
+    for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].intersect(r, g, &hits[i]);
+  }
 }
 
 void GeometrySet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const {
@@ -118,24 +141,34 @@ void GeometrySet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, b
   } else {
     std::fill(blocked, blocked + count, uint8_t(0));
   }
-  if (quadrics_->empty()) return;
+  if (quadrics_->empty() && grid_count() == 0) return;
   for (size_t i = 0; i < count; ++i) {
     if (blocked[i]) continue;
     const Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
-    blocked[i] = quadric_bvh_.occluded(r, [&](uint32_t q, const Ray& ray) {
-      float t;
-      Vec2f uv;
-      return torte::intersect((*quadrics_)[q], ray, &t, &uv);
-    });
+    if (!quadrics_->empty())
+      blocked[i] = quadric_bvh_.occluded(r, [&](uint32_t q, const Ray& ray) {
+        float t;
+        Vec2f uv;
+        return torte::intersect((*quadrics_)[q], ray, &t, &uv);
+      });
+    for (uint32_t g = 0; g < grid_count() && !blocked[i]; ++g) blocked[i] = (*grids_)[g].occluded(r);
   }
 }
 
 size_t GeometrySet::accel_bytes() const {
+  size_t grid_bytes = 0;
+  for (uint32_t g = 0; g < grid_count(); ++g) grid_bytes += (*grids_)[g].bytes();
   return tri_bvh_.memory_bytes() + tri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
-         quadric_bvh_.prim_indices().size() * sizeof(uint32_t) + tri_mesh_.size() * sizeof(uint32_t);
+         quadric_bvh_.prim_indices().size() * sizeof(uint32_t) + tri_mesh_.size() * sizeof(uint32_t) + grid_bytes;
 }
 
-SurfaceHit GeometrySet::surface(const Hit& hit) const {
+SurfaceHit GeometrySet::surface(const Hit& hit, const Ray* ray) const {
+  if (is_voxel_prim(hit.prim)) {
+    if (!ray) throw Error("internal: the surface of a voxel hit needs its ray");
+    SurfaceHit s = (*grids_)[voxel_prim_grid(hit.prim)].surface(hit, *ray);
+    s.object = object_of(hit.prim);
+    return s;
+  }
   SurfaceHit s;
   s.object = object_of(hit.prim);
   const std::vector<TriangleMesh>& meshes = *meshes_;

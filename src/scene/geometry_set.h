@@ -1,5 +1,5 @@
-// One level of geometry: triangle meshes and analytic shapes in a common space, with their acceleration
-// structures. The scene's own (top-level) shapes form one set; every instanced group is another, shared by all
+// One level of geometry: triangle meshes, analytic shapes and voxel grids in a common space, with their
+// acceleration structures. The scene's own (top-level) shapes form one set; every instanced group is another, shared by all
 // its instances (see scene/scene.h). Meshes and quadrics are owned by the caller and must outlive the set.
 #pragma once
 #include <cstdint>
@@ -11,6 +11,7 @@
 #include "accel/wide_bvh.h"
 #include "geometry/mesh.h"
 #include "geometry/quadric.h"
+#include "voxel/voxel_accel.h"
 
 namespace torte {
 
@@ -22,6 +23,8 @@ struct SurfaceHit {
   Vec2f uv;
   Vec3f dpdu, dpdv;  // surface tangents along the uv parameterization (textures, bump mapping)
   uint32_t object;
+  // Material override: an index into Scene::material_overrides (voxel faces and cell shapes), -1 = the object's.
+  int32_t material = -1;
 };
 
 class GeometrySet {
@@ -29,11 +32,19 @@ class GeometrySet {
   // Builds the BVHs. Object i of this set is meshes[i] for i < meshes.size(), then the quadrics, numbered from
   // object_base in the scene's object table.
   void build(const std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics, uint32_t object_base);
+  // With voxel grids: their objects follow the quadrics'. Voxel hits have prim >= kVoxelPrimBit (see
+  // voxel/voxel_accel.h for the encoding).
+  void build(const std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
+             const std::vector<VoxelGridAccel>& grids, uint32_t object_base);
 
   uint32_t triangle_count() const { return uint32_t(tri_mesh_.size()); }
-  uint32_t primitive_count() const { return triangle_count() + uint32_t(quadrics_->size()); }
-  // Scene object of a primitive (Hit::prim: triangles first, then quadrics).
+  uint32_t grid_count() const { return grids_ ? uint32_t(grids_->size()) : 0; }
+  // Triangles, quadrics and one per voxel grid.
+  uint32_t primitive_count() const { return triangle_count() + uint32_t(quadrics_->size()) + grid_count(); }
+  // Scene object of a primitive (Hit::prim: triangles first, then quadrics, then voxel hits).
   uint32_t object_of(uint32_t prim) const {
+    if (is_voxel_prim(prim))
+      return object_base_ + uint32_t(meshes_->size() + quadrics_->size()) + voxel_prim_grid(prim);
     return object_base_ +
            (prim < triangle_count() ? tri_mesh_[prim] : uint32_t(meshes_->size()) + (prim - triangle_count()));
   }
@@ -47,13 +58,16 @@ class GeometrySet {
   // One ray: updates *hit when something closer than min(ray.t_max, hit->t) is hit.
   bool intersect_one(const Ray& ray, Hit* hit) const;
   bool occluded_one(const Ray& ray) const;
-  SurfaceHit surface(const Hit& hit) const;
+  // The ray (in this set's space, as traced) is needed for voxel hits only.
+  SurfaceHit surface(const Hit& hit, const Ray* ray = nullptr) const;
   size_t accel_bytes() const;
 
  private:
   void intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const;
+  void intersect_grids(const RaySoA& rays, size_t count, Hit* hits) const;
   const std::vector<TriangleMesh>* meshes_ = nullptr;
   const std::vector<Quadric>* quadrics_ = nullptr;
+  const std::vector<VoxelGridAccel>* grids_ = nullptr;
   uint32_t object_base_ = 0;
   std::vector<uint32_t> tri_mesh_;    // triangle -> mesh
   std::vector<uint32_t> mesh_first_;  // mesh -> first triangle

@@ -14,15 +14,15 @@
 namespace torte {
 
 void Scene::finalize() {
-  uint32_t object_base = uint32_t(meshes.size() + quadrics.size());
+  uint32_t object_base = uint32_t(meshes.size() + quadrics.size() + grids.size());
   for (const auto& proto : prototypes)
-    object_base += uint32_t(proto->meshes.size() + proto->quadrics.size());
+    object_base += uint32_t(proto->meshes.size() + proto->quadrics.size() + proto->grids.size());
   if (objects.size() != object_base) throw Error("internal: scene objects do not match its shapes");
-  root_.build(meshes, quadrics, 0);
-  object_base = uint32_t(meshes.size() + quadrics.size());
+  root_.build(meshes, quadrics, grids, 0);
+  object_base = uint32_t(meshes.size() + quadrics.size() + grids.size());
   for (const auto& proto : prototypes) {
-    proto->geometry.build(proto->meshes, proto->quadrics, object_base);
-    object_base += uint32_t(proto->meshes.size() + proto->quadrics.size());
+    proto->geometry.build(proto->meshes, proto->quadrics, proto->grids, object_base);
+    object_base += uint32_t(proto->meshes.size() + proto->quadrics.size() + proto->grids.size());
   }
   // The instance level: a BVH2 over the instances' world bounds (the bottom levels are the prototypes').
   std::vector<Bounds3f> instance_bounds(instances.size());
@@ -146,10 +146,11 @@ size_t Scene::geometry_bytes() const {
   return bytes;
 }
 
-SurfaceHit Scene::surface(const Ray&, const Hit& hit) const {
-  if (hit.instance == kNoHit) return root_.surface(hit);
+SurfaceHit Scene::surface(const Ray& ray, const Hit& hit) const {
+  if (hit.instance == kNoHit) return root_.surface(hit, &ray);
   const Instance& inst = instances[hit.instance];
-  SurfaceHit s = prototypes[inst.prototype]->geometry.surface(hit);
+  const Ray local = to_instance(inst, ray);
+  SurfaceHit s = prototypes[inst.prototype]->geometry.surface(hit, &local);
   const Transform& m = inst.to_world;
   s.p = m.apply_point(s.p);
   // Normals map by the inverse transpose, which keeps them on the front side even under mirroring.

@@ -29,6 +29,7 @@ struct SceneObject {
 struct Prototype {
   std::vector<TriangleMesh> meshes;
   std::vector<Quadric> quadrics;
+  std::vector<VoxelGridAccel> grids;
   GeometrySet geometry;
 };
 
@@ -45,7 +46,14 @@ class Scene {
   // the objects of the prototypes (each prototype's objects numbered from its geometry's object base).
   std::vector<TriangleMesh> meshes;
   std::vector<Quadric> quadrics;
+  std::vector<VoxelGridAccel> grids;  // voxel grids: objects after the quadrics (voxel/voxel_accel.h)
   std::vector<SceneObject> objects;
+  // Materials that replace an object's for part of it (SurfaceHit::material): voxel faces and cell shapes.
+  std::vector<MaterialRef> material_overrides;
+  // The material at a hit: the voxel face's override when it has one, else its object's.
+  MaterialRef material_of(const SurfaceHit& s) const {
+    return s.material >= 0 ? material_overrides[size_t(s.material)] : objects[s.object].material;
+  }
   // Instancing (two levels): prototypes shared by many instances. Held by pointer: each geometry set points
   // into its prototype's arrays.
   std::vector<std::unique_ptr<Prototype>> prototypes;

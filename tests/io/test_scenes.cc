@@ -122,6 +122,12 @@ TEST_CASE("scenes: the Cornell box with the direct-lighting integrator", "[scene
   check_renders(dir, fs::path(TORTE_SOURCE_DIR) / "scenes" / "cornell-box.lua", {"integrator=direct"});
 }
 
+TEST_CASE("scenes: the Cornell box with instant global illumination and its parameters", "[scenes][igi]") {
+  ScenesDir dir("cornell_igi");
+  check_renders(dir, fs::path(TORTE_SOURCE_DIR) / "scenes" / "cornell-box.lua",
+                {"integrator=igi", "vpl_sets=2", "light_paths=8", "g_limit=50"});
+}
+
 TEST_CASE("scenes: shapes.lua and lights.lua with direct lighting", "[scenes]") {
   ScenesDir dir("direct");
   const fs::path scenes = fs::path(TORTE_SOURCE_DIR) / "scenes";

@@ -1,0 +1,497 @@
+// torte.data.*: generic building blocks for reading binary data files from Lua (the Minecraft loader in
+// lua/minecraft/ is written with them; nothing here knows about Minecraft).
+//
+//   local s = torte.data.read_file("r.0.0.mca")        -- the whole file as a string; errors name the file
+//   local names = torte.data.list_dir("world/region")   -- sorted names, or nil + message
+//   local raw = torte.data.inflate(s:sub(6, 5 + n))     -- zlib stream -> string (gunzip for gzip streams)
+//   local root, name, next = torte.data.nbt(raw [, offset=1])   -- NBT (big-endian) -> Lua values
+//   local ids, counts = torte.data.unpack_bits(src, bits, count [, padded [, map]])
+//
+// NBT tags become: byte/short/int/long -> integer, float/double -> number, string -> string, byte array ->
+// string (raw bytes), list -> array table, compound -> table, int array -> integer array table, long array ->
+// a compact `torte.data.longs` userdata (#a, a[i] with 1-based i, a:table(), a:unpack_bits(...)); block-state
+// arrays are long arrays of thousands of entries and only ever read through unpack_bits.
+//
+// unpack_bits reads `count` unsigned `bits`-wide fields from `src` (a torte.data.longs, or a string read as
+// little-endian bytes), least significant bits first. Fields span unit boundaries unless `padded` is true, in
+// which case each 64-bit long (or byte, for strings) holds floor(64 / bits) fields and the rest is padding.
+// It returns a string of `count` little-endian int16 values -- the fields themselves, or map[field + 1] when a
+// `map` table is given (missing entries are 0) -- and a table counting how often each field value occurred
+// (counts[v + 1]).
+#include <zlib.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "types.h"
+
+namespace torte::lua {
+
+namespace {
+
+constexpr const char* kLongsName = "torte.data.longs";
+
+// ---- files and compression ---------------------------------------------------------------------------------
+
+// list_dir(path) -> sorted array of the names in a directory (nil, message when it cannot be read).
+int l_list_dir(lua_State* L) {
+  if (lua_type(L, 1) != LUA_TSTRING) throw Error("torte.data.list_dir expects a directory name, got " + type_name(L, 1));
+  const std::string path = lua_tostring(L, 1);
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(path, ec), end; !ec && it != end; it.increment(ec))
+    names.push_back(it->path().filename().string());
+  if (ec) {
+    lua_pushnil(L);
+    lua_pushstring(L, ("torte.data.list_dir: cannot read '" + path + "': " + ec.message()).c_str());
+    return 2;
+  }
+  std::sort(names.begin(), names.end());
+  lua_createtable(L, int(names.size()), 0);
+  for (size_t i = 0; i < names.size(); ++i) {
+    lua_pushlstring(L, names[i].data(), names[i].size());
+    lua_rawseti(L, -2, lua_Integer(i + 1));
+  }
+  return 1;
+}
+
+int l_read_file(lua_State* L) {
+  if (lua_type(L, 1) != LUA_TSTRING) throw Error("torte.data.read_file expects a file name, got " + type_name(L, 1));
+  const std::string path = lua_tostring(L, 1);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("torte.data.read_file: cannot open '" + path + "': " + std::strerror(errno));
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (in.bad()) throw Error("torte.data.read_file: cannot read '" + path + "'");
+  const std::string data = s.str();
+  lua_pushlstring(L, data.data(), data.size());
+  return 1;
+}
+
+// windowBits 15: zlib, 15 + 16: gzip. Decompresses one stream; trailing bytes after it are an error.
+std::string decompress(const char* fn, const unsigned char* in, size_t n, int window_bits) {
+  z_stream z{};
+  if (inflateInit2(&z, window_bits) != Z_OK) throw Error(std::string(fn) + ": cannot initialise zlib");
+  std::string out;
+  out.resize(n < 64 ? 256 : n * 4);
+  z.next_in = const_cast<unsigned char*>(in);
+  z.avail_in = uInt(n);
+  int rc = Z_OK;
+  for (;;) {
+    if (z.total_out == out.size()) out.resize(out.size() * 2);
+    z.next_out = reinterpret_cast<unsigned char*>(out.data()) + z.total_out;
+    z.avail_out = uInt(out.size() - z.total_out);
+    rc = inflate(&z, Z_NO_FLUSH);
+    if (rc == Z_STREAM_END) break;
+    if (rc == Z_OK) continue;
+    if (rc == Z_BUF_ERROR && z.avail_out > 0) {  // no progress possible: the input ran out
+      const size_t used = z.total_in;
+      const uLong produced = z.total_out;
+      inflateEnd(&z);
+      z.total_out = produced;
+      throw Error(std::string(fn) + ": truncated input: the compressed stream ends early (all " + std::to_string(used) +
+                  " bytes read, " + std::to_string(z.total_out) + " bytes decompressed)");
+    }
+    if (rc == Z_BUF_ERROR) continue;
+    const std::string msg = z.msg ? z.msg : "error " + std::to_string(rc);
+    const size_t at = z.total_in;
+    inflateEnd(&z);
+    throw Error(std::string(fn) + ": corrupt input near byte " + std::to_string(at) + ": " + msg);
+  }
+  const size_t used = z.total_in, produced = z.total_out;
+  inflateEnd(&z);
+  out.resize(produced);
+  if (used != n)
+    throw Error(std::string(fn) + ": " + std::to_string(n - used) + " bytes of trailing data after the stream");
+  return out;
+}
+
+template <int WindowBits>
+int l_decompress(lua_State* L) {
+  const char* fn = WindowBits == 15 ? "torte.data.inflate" : "torte.data.gunzip";
+  if (lua_type(L, 1) != LUA_TSTRING) throw Error(std::string(fn) + " expects a string, got " + type_name(L, 1));
+  size_t n = 0;
+  const char* s = lua_tolstring(L, 1, &n);
+  if (n == 0) throw Error(std::string(fn) + ": empty input");
+  const std::string out = decompress(fn, reinterpret_cast<const unsigned char*>(s), n, WindowBits);
+  lua_pushlstring(L, out.data(), out.size());
+  return 1;
+}
+
+// ---- long arrays ---------------------------------------------------------------------------------------------
+
+struct Longs {
+  lua_Integer n;
+  int64_t v[1];  // n entries follow
+};
+
+Longs* new_longs(lua_State* L, size_t n) {
+  auto* a = static_cast<Longs*>(lua_newuserdatauv(L, offsetof(Longs, v) + sizeof(int64_t) * (n ? n : 1), 0));
+  a->n = lua_Integer(n);
+  luaL_setmetatable(L, kLongsName);
+  return a;
+}
+
+Longs* check_longs(lua_State* L, int idx, const char* fn) {
+  auto* a = static_cast<Longs*>(luaL_testudata(L, idx, kLongsName));
+  if (!a) throw Error(std::string(fn) + " expects a " + kLongsName + ", got " + type_name(L, idx));
+  return a;
+}
+
+int l_unpack_bits(lua_State* L);
+int longs_table(lua_State* L) {
+  Longs* a = check_longs(L, 1, "torte.data.longs:table");
+  lua_createtable(L, int(a->n), 0);
+  for (lua_Integer i = 0; i < a->n; ++i) {
+    lua_pushinteger(L, a->v[i]);
+    lua_rawseti(L, -2, i + 1);
+  }
+  return 1;
+}
+
+int longs_index(lua_State* L) {
+  Longs* a = check_longs(L, 1, "index");
+  if (lua_type(L, 2) == LUA_TNUMBER) {
+    int ok = 0;
+    const lua_Integer i = lua_tointegerx(L, 2, &ok);
+    if (ok && i >= 1 && i <= a->n)
+      lua_pushinteger(L, a->v[i - 1]);
+    else
+      lua_pushnil(L);
+    return 1;
+  }
+  const char* key = lua_tostring(L, 2);
+  if (key && std::strcmp(key, "table") == 0) {
+    lua_pushcfunction(L, guarded<longs_table>);
+  } else if (key && std::strcmp(key, "unpack_bits") == 0) {
+    lua_pushcfunction(L, guarded<l_unpack_bits>);
+  } else {
+    throw Error(std::string(kLongsName) + " has no field '" + (key ? key : "?") +
+                "' (index it with 1..#a; methods: table, unpack_bits)");
+  }
+  return 1;
+}
+
+int longs_len(lua_State* L) {
+  lua_pushinteger(L, check_longs(L, 1, "#")->n);
+  return 1;
+}
+
+int longs_tostring(lua_State* L) {
+  lua_pushfstring(L, "%s (%I longs)", kLongsName, check_longs(L, 1, "tostring")->n);
+  return 1;
+}
+
+// ---- NBT -----------------------------------------------------------------------------------------------------
+
+// "[i]" for error paths (built by appending: GCC 12 warns falsely about "[" + std::to_string(i) + "]").
+std::string index_label(size_t i) {
+  std::string s(1, '[');
+  s += std::to_string(i);
+  s += ']';
+  return s;
+}
+
+class NbtReader {
+ public:
+  NbtReader(lua_State* L, const unsigned char* data, size_t size, size_t pos) : L_(L), d_(data), n_(size), p_(pos) {}
+
+  // Reads a named root tag; pushes its value and name. Returns the position after it.
+  size_t root() {
+    need(1, "the root tag type");
+    const int type = d_[p_++];
+    if (type == 0) fail("the root tag is TAG_End (empty input?)");
+    if (type > 12) fail("unknown root tag type " + std::to_string(type));
+    std::string name = read_name();
+    path_.push_back(name.empty() ? std::string("<root>") : name);
+    value(type);
+    path_.pop_back();
+    lua_pushlstring(L_, name.data(), name.size());
+    return p_;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    std::string where;
+    for (const std::string& s : path_) {
+      if (!where.empty() && s[0] != '[') where += '.';
+      where += s;
+    }
+    throw Error("torte.data.nbt: " + what + (where.empty() ? "" : " in '" + where + "'") + " at byte " +
+                std::to_string(p_ + 1) + " of " + std::to_string(n_));
+  }
+  void need(size_t bytes, const char* what) const {
+    if (n_ - p_ < bytes)
+      fail(std::string("truncated input: ") + what + " needs " + std::to_string(bytes) + " bytes, " +
+           std::to_string(n_ - p_) + " left");
+  }
+  uint64_t be(int bytes) {
+    uint64_t v = 0;
+    for (int i = 0; i < bytes; ++i) v = (v << 8) | d_[p_ + i];
+    p_ += bytes;
+    return v;
+  }
+  std::string read_name() {
+    need(2, "a tag name length");
+    const size_t len = size_t(be(2));
+    need(len, "a tag name");
+    std::string s(reinterpret_cast<const char*>(d_ + p_), len);
+    p_ += len;
+    return s;
+  }
+  size_t array_length(size_t element_bytes, const char* what) {
+    need(4, "an array length");
+    const int32_t len = int32_t(uint32_t(be(4)));
+    if (len < 0) fail(std::string("negative ") + what + " length " + std::to_string(len));
+    if ((n_ - p_) / element_bytes < size_t(len))
+      fail(std::string("truncated input: ") + what + " of " + std::to_string(len) + " entries needs " +
+           std::to_string(size_t(len) * element_bytes) + " bytes, " + std::to_string(n_ - p_) + " left");
+    return size_t(len);
+  }
+
+  void value(int type) {
+    if (++depth_ > 512) fail("nesting deeper than 512 levels");
+    luaL_checkstack(L_, 8, "torte.data.nbt");
+    switch (type) {
+      case 1:
+        need(1, "a byte");
+        lua_pushinteger(L_, int8_t(be(1)));
+        break;
+      case 2:
+        need(2, "a short");
+        lua_pushinteger(L_, int16_t(be(2)));
+        break;
+      case 3:
+        need(4, "an int");
+        lua_pushinteger(L_, int32_t(uint32_t(be(4))));
+        break;
+      case 4:
+        need(8, "a long");
+        lua_pushinteger(L_, lua_Integer(be(8)));
+        break;
+      case 5: {
+        need(4, "a float");
+        const uint32_t bits = uint32_t(be(4));
+        float f;
+        std::memcpy(&f, &bits, 4);
+        lua_pushnumber(L_, f);
+        break;
+      }
+      case 6: {
+        need(8, "a double");
+        const uint64_t bits = be(8);
+        double f;
+        std::memcpy(&f, &bits, 8);
+        lua_pushnumber(L_, f);
+        break;
+      }
+      case 7: {
+        const size_t len = array_length(1, "byte array");
+        lua_pushlstring(L_, reinterpret_cast<const char*>(d_ + p_), len);
+        p_ += len;
+        break;
+      }
+      case 8: {
+        need(2, "a string length");
+        const size_t len = size_t(be(2));
+        need(len, "a string");
+        lua_pushlstring(L_, reinterpret_cast<const char*>(d_ + p_), len);
+        p_ += len;
+        break;
+      }
+      case 9: {
+        need(1, "a list element type");
+        const int et = d_[p_++];
+        if (et > 12) fail("unknown list element type " + std::to_string(et));
+        const size_t len = array_length(1, "list");
+        if (et == 0 && len > 0) fail("a list of TAG_End with " + std::to_string(len) + " entries");
+        lua_createtable(L_, int(len), 0);
+        for (size_t i = 0; i < len; ++i) {
+          path_.push_back(index_label(i + 1));
+          value(et);
+          path_.pop_back();
+          lua_rawseti(L_, -2, lua_Integer(i + 1));
+        }
+        break;
+      }
+      case 10: {
+        lua_newtable(L_);
+        for (;;) {
+          need(1, "a tag type (compound not closed by TAG_End)");
+          const int t = d_[p_++];
+          if (t == 0) break;
+          if (t > 12) fail("unknown tag type " + std::to_string(t));
+          std::string name = read_name();
+          lua_pushlstring(L_, name.data(), name.size());
+          path_.push_back(std::move(name));
+          value(t);
+          path_.pop_back();
+          lua_rawset(L_, -3);
+        }
+        break;
+      }
+      case 11: {
+        const size_t len = array_length(4, "int array");
+        lua_createtable(L_, int(len), 0);
+        for (size_t i = 0; i < len; ++i) {
+          lua_pushinteger(L_, int32_t(uint32_t(be(4))));
+          lua_rawseti(L_, -2, lua_Integer(i + 1));
+        }
+        break;
+      }
+      case 12: {
+        const size_t len = array_length(8, "long array");
+        Longs* a = new_longs(L_, len);
+        for (size_t i = 0; i < len; ++i) a->v[i] = int64_t(be(8));
+        break;
+      }
+      default:
+        fail(std::string("unexpected tag type ") + std::to_string(type));
+    }
+    --depth_;
+  }
+
+  lua_State* L_;
+  const unsigned char* d_;
+  size_t n_, p_;
+  int depth_ = 0;
+  std::vector<std::string> path_;
+};
+
+// nbt(s [, offset = 1]) -> value, name, next_offset
+int l_nbt(lua_State* L) {
+  if (lua_type(L, 1) != LUA_TSTRING) throw Error("torte.data.nbt expects a string, got " + type_name(L, 1));
+  size_t n = 0;
+  const char* s = lua_tolstring(L, 1, &n);
+  const lua_Integer offset = luaL_optinteger(L, 2, 1);
+  if (offset < 1 || size_t(offset) > n + 1)
+    throw Error("torte.data.nbt: offset " + std::to_string(offset) + " is outside the string (length " +
+                std::to_string(n) + ")");
+  lua_settop(L, 2);
+  NbtReader r(L, reinterpret_cast<const unsigned char*>(s), n, size_t(offset - 1));
+  const size_t end = r.root();
+  lua_pushinteger(L, lua_Integer(end + 1));
+  return 3;
+}
+
+// ---- bit fields ----------------------------------------------------------------------------------------------
+
+// unpack_bits(src, bits, count [, padded [, map]]) -> int16 string, counts
+int l_unpack_bits(lua_State* L) {
+  const char* fn = "torte.data.unpack_bits";
+  const int64_t* longs = nullptr;
+  const unsigned char* bytes = nullptr;
+  size_t units = 0;
+  int unit_bits = 0;
+  if (lua_type(L, 1) == LUA_TSTRING) {
+    bytes = reinterpret_cast<const unsigned char*>(lua_tolstring(L, 1, &units));
+    unit_bits = 8;
+  } else if (auto* a = static_cast<Longs*>(luaL_testudata(L, 1, kLongsName))) {
+    longs = a->v;
+    units = size_t(a->n);
+    unit_bits = 64;
+  } else {
+    throw Error(std::string(fn) + " expects a string or a " + kLongsName + ", got " + type_name(L, 1));
+  }
+  const lua_Integer bits = luaL_checkinteger(L, 2), count = luaL_checkinteger(L, 3);
+  const bool padded = lua_toboolean(L, 4);
+  if (bits < 1 || bits > 32) throw Error(std::string(fn) + ": bits must be in 1..32, got " + std::to_string(bits));
+  if (count < 0 || count > (1 << 24)) throw Error(std::string(fn) + ": bad count " + std::to_string(count));
+  if (padded && bits > unit_bits)
+    throw Error(std::string(fn) + ": " + std::to_string(bits) + "-bit fields do not fit a padded " +
+                std::to_string(unit_bits) + "-bit unit");
+  const size_t per_unit = padded ? size_t(unit_bits / bits) : 0;
+  const size_t needed = padded ? (size_t(count) + per_unit - 1) / per_unit
+                               : (size_t(count) * size_t(bits) + size_t(unit_bits) - 1) / size_t(unit_bits);
+  if (units < needed)
+    throw Error(std::string(fn) + ": " + std::to_string(count) + (padded ? " padded " : " ") + std::to_string(bits) +
+                "-bit fields need " + std::to_string(needed) + (longs ? " longs" : " bytes") + ", got " +
+                std::to_string(units));
+  const bool has_map = lua_istable(L, 5);
+  std::vector<int32_t> map;
+  if (has_map) {
+    const lua_Integer m = luaL_len(L, 5);
+    map.resize(size_t(m));
+    for (lua_Integer i = 0; i < m; ++i) {
+      lua_rawgeti(L, 5, i + 1);
+      int ok = 0;
+      const lua_Integer v = lua_tointegerx(L, -1, &ok);
+      if (!ok && !lua_isnil(L, -1)) throw Error(std::string(fn) + ": map[" + std::to_string(i + 1) + "] is not an integer");
+      if (v < -32768 || v > 32767)
+        throw Error(std::string(fn) + ": map[" + std::to_string(i + 1) + "] = " + std::to_string(v) +
+                    " does not fit 16 bits");
+      map[size_t(i)] = int32_t(v);
+      lua_pop(L, 1);
+    }
+  }
+  const uint64_t mask = (uint64_t(1) << bits) - 1;
+  auto unit = [&](size_t i) -> uint64_t { return longs ? uint64_t(longs[i]) : uint64_t(bytes[i]); };
+  std::string out(size_t(count) * 2, '\0');
+  std::vector<lua_Integer> counts;
+  for (size_t k = 0; k < size_t(count); ++k) {
+    uint64_t v;
+    if (padded) {
+      v = (unit(k / per_unit) >> ((k % per_unit) * size_t(bits))) & mask;
+    } else {
+      const size_t bit = k * size_t(bits), u = bit / size_t(unit_bits), sh = bit % size_t(unit_bits);
+      v = unit(u) >> sh;
+      for (size_t got = size_t(unit_bits) - sh, uu = u + 1; got < size_t(bits); got += size_t(unit_bits), ++uu)
+        v |= unit(uu) << got;
+      v &= mask;
+    }
+    if (v >= counts.size()) counts.resize(size_t(v) + 1, 0);
+    ++counts[size_t(v)];
+    int32_t o;
+    if (has_map) {
+      o = v < map.size() ? map[size_t(v)] : 0;
+    } else {
+      if (v > 32767)
+        throw Error(std::string(fn) + ": field value " + std::to_string(v) + " does not fit int16 (give a map)");
+      o = int32_t(v);
+    }
+    out[2 * k] = char(uint32_t(o) & 0xff);
+    out[2 * k + 1] = char((uint32_t(o) >> 8) & 0xff);
+  }
+  lua_pushlstring(L, out.data(), out.size());
+  lua_createtable(L, int(counts.size()), 0);
+  for (size_t i = 0; i < counts.size(); ++i) {
+    lua_pushinteger(L, counts[i]);
+    lua_rawseti(L, -2, lua_Integer(i + 1));
+  }
+  return 2;
+}
+
+}  // namespace
+
+void open_data(lua_State* L, int torte_index) {
+  luaL_newmetatable(L, kLongsName);
+  lua_pushcfunction(L, guarded<longs_index>);
+  lua_setfield(L, -2, "__index");
+  lua_pushcfunction(L, guarded<longs_len>);
+  lua_setfield(L, -2, "__len");
+  lua_pushcfunction(L, guarded<longs_tostring>);
+  lua_setfield(L, -2, "__tostring");
+  lua_pushstring(L, kLongsName);
+  lua_setfield(L, -2, "__metatable");
+  lua_pop(L, 1);
+
+  const luaL_Reg fns[] = {{"read_file", guarded<l_read_file>},
+                          {"list_dir", guarded<l_list_dir>},
+                          {"inflate", guarded<l_decompress<15>>},
+                          {"gunzip", guarded<l_decompress<15 + 16>>},
+                          {"nbt", guarded<l_nbt>},
+                          {"unpack_bits", guarded<l_unpack_bits>},
+                          {nullptr, nullptr}};
+  push_subtable(L, torte_index, "data");
+  set_functions(L, fns);
+  lua_pop(L, 1);
+}
+
+}  // namespace torte::lua

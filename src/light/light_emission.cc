@@ -1,0 +1,113 @@
+#include "light/light_emission.h"
+
+#include <cmath>
+
+#include "core/sampling.h"
+#include "geometry/quadric.h"
+#include "scene/scene.h"
+
+namespace torte {
+
+namespace {
+
+// Origin for light arriving from infinity along `dir`: a point on the disk of the scene's bounding sphere,
+// perpendicular to dir, moved back by the radius so the ray starts outside the scene. Returns the disk's area.
+float disk_origin(const Scene& scene, Vec3f dir, Vec2f u, Vec3f* origin) {
+  const float r = std::max(scene.radius(), 1e-6f);
+  const Frame f = Frame::from_z(dir);
+  const Vec2f d = sample_uniform_disk_concentric(u);
+  *origin = scene.center() + (f.s * d.x + f.t * d.y) * r - dir * (r * 1.001f);
+  return kPi * r * r;
+}
+
+}  // namespace
+
+bool sample_emission(const Scene& scene, const Light& light, Vec2f u_pos, Vec2f u_dir, float uc,
+                     EmissionSample* s) {
+  s->normal = Vec3f(0, 0, 0);
+  switch (light.kind) {
+    case LightKind::Point: {
+      s->origin = light.position;
+      s->dir = sample_uniform_sphere(u_dir);
+      s->weight = light.radiance / uniform_sphere_pdf();
+      return !s->weight.is_black();
+    }
+    case LightKind::Spot: {
+      float pdf;
+      s->origin = light.position;
+      s->dir = sample_spot_emission(light, u_dir, &pdf);
+      if (!(pdf > 0) || !std::isfinite(pdf)) return false;
+      s->weight = light.radiance * (spot_falloff(light, dot(s->dir, light.direction)) / pdf);
+      return !s->weight.is_black();
+    }
+    case LightKind::Distant: {
+      s->dir = light.direction;
+      s->weight = light.radiance * disk_origin(scene, s->dir, u_pos, &s->origin);
+      return !s->weight.is_black();
+    }
+    case LightKind::Infinite:
+    case LightKind::Environment:
+    case LightKind::Sky: {
+      Vec3f wi;  // direction towards the light
+      float pdf;
+      Rgb le;
+      if (light.kind == LightKind::Infinite) {
+        wi = sample_uniform_sphere(u_dir);
+        pdf = uniform_sphere_pdf();
+        le = light.radiance;
+      } else if (light.kind == LightKind::Environment) {
+        if (!light.environment->sampling.sample(u_dir, &wi, &pdf)) return false;
+        le = light.environment->lookup(wi);
+      } else {
+        if (!light.sky->sample(u_dir, &wi, &pdf)) return false;
+        le = light.sky->radiance(wi);
+      }
+      if (!(pdf > 0) || !std::isfinite(pdf)) return false;
+      s->dir = -wi;
+      s->weight = le * (disk_origin(scene, s->dir, u_pos, &s->origin) / pdf);
+      return !s->weight.is_black();
+    }
+    case LightKind::Area: {
+      Vec3f q, n;
+      float pdf_area;
+      if (light.object < scene.meshes.size()) {
+        // As sample_light: a triangle by area, a uniform point on it; the normal is the winding's, turned to the
+        // interpolated normal's side when the mesh has normals (the side area_emission lets emit).
+        const TriangleMesh& mesh = scene.meshes[light.object];
+        float u_rest;
+        const int tri = light.triangles.sample_discrete(u_pos.x, nullptr, &u_rest);
+        const uint32_t* idx = &mesh.indices[3 * size_t(tri)];
+        const Vec3f p0 = mesh.position(idx[0]), p1 = mesh.position(idx[1]), p2 = mesh.position(idx[2]);
+        const Vec3f b = sample_uniform_triangle(Vec2f(u_rest, u_pos.y));
+        q = p0 * b.x + p1 * b.y + p2 * b.z;
+        n = normalize(cross(p1 - p0, p2 - p0));
+        if (mesh.has_normals()) {
+          const Vec3f ns = mesh.normal(idx[0]) * b.x + mesh.normal(idx[1]) * b.y + mesh.normal(idx[2]) * b.z;
+          if (length_squared(ns) > 0) n = face_forward(n, ns);
+        }
+        pdf_area = 1 / light.area;
+      } else {
+        const SurfacePoint sp = sample_area(scene.quadrics[light.object - scene.meshes.size()], u_pos, &pdf_area);
+        q = sp.p;
+        n = sp.n;
+      }
+      if (!(pdf_area > 0) || !std::isfinite(pdf_area)) return false;
+      float side_pdf = 1;
+      if (light.two_sided) {
+        side_pdf = 0.5f;
+        if (uc < 0.5f) n = -n;
+      }
+      // Cosine-weighted direction: Le cos / (pdf_area * cos/pi * side_pdf) = Le pi / (pdf_area side_pdf).
+      const Vec3f local = sample_cosine_hemisphere(u_dir);
+      if (!(local.z > 0)) return false;
+      s->origin = q;
+      s->normal = n;
+      s->dir = normalize(Frame::from_z(n).to_world(local));
+      s->weight = light.radiance * (kPi / (pdf_area * side_pdf));
+      return !s->weight.is_black();
+    }
+  }
+  return false;
+}
+
+}  // namespace torte

@@ -1,0 +1,110 @@
+#include "voxel/voxel_accel.h"
+
+#include <cmath>
+
+#include "scene/geometry_set.h"
+
+namespace torte {
+
+VoxelCellGeometry::VoxelCellGeometry() : set(std::make_unique<GeometrySet>()) {}
+VoxelCellGeometry::~VoxelCellGeometry() = default;
+void VoxelCellGeometry::build() { set->build(meshes, quadrics, 0); }
+
+namespace {
+
+// Negative ids: the cell's GeometrySet, traced in unit-cell space.
+struct CellHandler {
+  const VoxelGridAccel& grid;
+  bool intersect(int16_t id, const Ray& r, Hit* h) const {
+    const VoxelCellGeometry* c = grid.cell(id);
+    if (!c || c->set->empty()) return false;
+    Hit tmp;
+    if (!c->set->intersect_one(r, &tmp)) return false;
+    *h = tmp;
+    return true;
+  }
+  bool occluded(int16_t id, const Ray& r) const {
+    const VoxelCellGeometry* c = grid.cell(id);
+    return c && !c->set->empty() && c->set->occluded_one(r);
+  }
+};
+
+Vec3f unit(int axis, float s = 1) {
+  Vec3f v(0, 0, 0);
+  v[axis] = s;
+  return v;
+}
+
+}  // namespace
+
+bool VoxelGridAccel::intersect(const Ray& ray, uint32_t index, Hit* hit) const {
+  Ray r = to_set.apply_inverse(ray);
+  r.t_max = std::min(ray.t_max, hit->t);
+  if (!(r.t_max > 0)) return false;
+  VoxelHit vh;
+  if (!voxel_intersect(*tree, r, &vh, CellHandler{*this}) || !(vh.t < hit->t)) return false;
+  hit->t = vh.t;
+  if (vh.face >= 0) {
+    hit->prim = voxel_prim(index, false, vh.face, vh.id);
+    hit->b1 = vh.u;
+    hit->b2 = vh.v;
+  } else {
+    hit->prim = voxel_prim(index, true, 0, vh.id);
+    hit->b1 = vh.cell.b1;
+    hit->b2 = vh.cell.b2;
+  }
+  return true;
+}
+
+bool VoxelGridAccel::occluded(const Ray& ray) const {
+  return voxel_occluded(*tree, to_set.apply_inverse(ray), CellHandler{*this});
+}
+
+SurfaceHit VoxelGridAccel::surface(const Hit& hit, const Ray& ray) const {
+  const Ray r = to_set.apply_inverse(ray);
+  const int16_t id = voxel_prim_id(hit.prim);
+  SurfaceHit s;
+  s.object = 0;
+  if (!voxel_prim_is_cell(hit.prim)) {
+    const int face = voxel_prim_face(hit.prim), axis = face / 2;
+    const bool positive = face % 2 == 0;
+    const int ua = voxel_face_u_axis(axis), va = voxel_face_v_axis(axis);
+    const Vec3f p = r.at(hit.t);
+    // The face plane is an integer; the uv says where in the face, which picks the voxel even on its edges.
+    const float plane = std::round(p[axis]);
+    s.p[axis] = plane;
+    s.p[ua] = std::round(p[ua] - hit.b1) + hit.b1;
+    s.p[va] = std::round(p[va] - hit.b2) + hit.b2;
+    s.ng = s.ns = unit(axis, positive ? 1.0f : -1.0f);
+    s.uv = Vec2f(hit.b1, hit.b2);
+    s.dpdu = unit(ua);
+    s.dpdv = unit(va);
+    s.material = material_of(id, face);
+  } else {
+    Ray again = r;
+    again.t_max = hit.t * (1 + 1e-5f) + 1e-6f;
+    VoxelHit vh;
+    const VoxelCellGeometry* c = cell(id);
+    if (c && voxel_intersect(*tree, again, &vh, CellHandler{*this}) && vh.face < 0) {
+      const SurfaceHit cs = c->set->surface(vh.cell);
+      s = cs;
+      s.p = cs.p + Vec3f(float(vh.voxel[0]), float(vh.voxel[1]), float(vh.voxel[2]));
+      s.material = cs.object < c->object_material.size() ? c->object_material[cs.object] : -1;
+    } else {  // not found again (should not happen): a plausible point facing the ray
+      s.p = r.at(hit.t);
+      s.ng = s.ns = normalize(-r.d);
+      const Frame f = Frame::from_z(s.ng);
+      s.dpdu = f.s;
+      s.dpdv = f.t;
+    }
+  }
+  s.p = to_set.apply_point(s.p);
+  s.ng = normalize(to_set.apply_normal(s.ng));
+  s.ns = normalize(to_set.apply_normal(s.ns));
+  s.dpdu = to_set.apply_vector(s.dpdu);
+  s.dpdv = to_set.apply_vector(s.dpdv);
+  s.object = 0;
+  return s;
+}
+
+}  // namespace torte
