@@ -20,39 +20,13 @@
 
 #include "core/rng.h"
 #include "voxel/voxel_traverse.h"
+#include "voxel_test_cells.h"
 
 using namespace torte;
 
 namespace {
 
-// id -1: a bottom slab [0,1] x [0,0.5] x [0,1] (an analytic box: the cost of the cell callback, not of a mesh).
-struct SlabCells {
-  static bool slab(const Ray& r, float* t_hit) {
-    float t0 = 0, t1 = r.t_max;
-    const float hi[3] = {1, 0.5f, 1};
-    for (int a = 0; a < 3; ++a) {
-      const float inv = 1 / r.d[a];
-      float tn = (0 - r.o[a]) * inv, tf = (hi[a] - r.o[a]) * inv;
-      if (tn > tf) std::swap(tn, tf);
-      t0 = std::max(t0, tn);
-      t1 = std::min(t1, tf);
-    }
-    if (!(t0 <= t1)) return false;
-    *t_hit = t0;
-    return true;
-  }
-  bool intersect(int16_t id, const Ray& r, Hit* h) const {
-    float t;
-    if (id != -1 || !slab(r, &t)) return false;
-    h->t = t;
-    h->prim = 0;
-    return true;
-  }
-  bool occluded(int16_t id, const Ray& r) const {
-    float t;
-    return id == -1 && slab(r, &t);
-  }
-};
+using torte::test::SlabCells;
 
 VoxelGrid make_terrain(int n, int height) {
   VoxelGrid g;

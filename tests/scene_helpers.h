@@ -1,7 +1,12 @@
 // Small scene-building helpers shared by the renderer tests (SceneBuilder descriptions, not Lua).
 #pragma once
+#include <tbb/global_control.h>
+
+#include <catch2/catch.hpp>
+#include <cstring>
 #include <memory>
 
+#include "render/render.h"
 #include "scene/builder.h"
 
 namespace torte::test {
@@ -40,6 +45,24 @@ inline CameraDesc furnace_camera() {
   c.camera_to_world = look_at({0, 0, -5}, {0, 0, 0}, {0, 1, 0});
   c.extent = 2.5f;
   return c;
+}
+
+// The image must not depend on the thread count (bitwise), and must depend on the seed.
+inline void check_thread_determinism(const Scene& scene, RenderSettings s) {
+  Image one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = render(scene, s).image;
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = render(scene, s).image;
+  }
+  REQUIRE(one.pixels.size() == two.pixels.size());
+  CHECK(std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(Rgb)) == 0);
+  s.seed += 1;
+  const Image other = render(scene, s).image;
+  CHECK(std::memcmp(one.pixels.data(), other.pixels.data(), one.pixels.size() * sizeof(Rgb)) != 0);
 }
 
 }  // namespace torte::test

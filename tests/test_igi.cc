@@ -10,8 +10,10 @@
 
 #include "render/render.h"
 #include "scene/builder.h"
+#include "scene_helpers.h"
 
 using namespace torte;
+using torte::test::check_thread_determinism;
 
 namespace {
 
@@ -181,20 +183,7 @@ TEST_CASE("igi gives a bitwise identical image at 1 and 2 threads", "[render][ig
   s.vpl_sets = 3;
   s.light_paths = 32;
   s.filter = Filter::mitchell();
-  Image one, two;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = render(*scene, s).image;
-  }
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    two = render(*scene, s).image;
-  }
-  REQUIRE(one.pixels.size() == two.pixels.size());
-  CHECK(std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(Rgb)) == 0);
-  s.seed = 1;
-  const Image other = render(*scene, s).image;
-  CHECK(std::memcmp(one.pixels.data(), other.pixels.data(), one.pixels.size() * sizeof(Rgb)) != 0);
+  check_thread_determinism(*scene, s);
 }
 
 TEST_CASE("igi settings are validated", "[render][igi]") {

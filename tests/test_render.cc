@@ -202,20 +202,7 @@ TEST_CASE("the same seed gives a bitwise identical image at 1 and 2 threads", "[
   s.spp = 8;
   s.max_depth = 8;
   s.filter = Filter::mitchell();
-  Image one, two;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = render(*scene, s).image;
-  }
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    two = render(*scene, s).image;
-  }
-  REQUIRE(one.pixels.size() == two.pixels.size());
-  CHECK(std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(Rgb)) == 0);
-  s.seed = 1;
-  const Image other = render(*scene, s).image;
-  CHECK(std::memcmp(one.pixels.data(), other.pixels.data(), one.pixels.size() * sizeof(Rgb)) != 0);
+  check_thread_determinism(*scene, s);
 }
 
 TEST_CASE("max_depth 0 shows only what emits", "[render]") {
