@@ -90,6 +90,29 @@ Rgb escaped_radiance(const Light& light, Vec3f dir) {
   }
 }
 
+void sample_area_light_point(const Scene& scene, const Light& light, Vec2f u, Vec3f* q, Vec3f* n,
+                             float* pdf_area) {
+  if (light.object < scene.meshes.size()) {
+    const TriangleMesh& mesh = scene.meshes[light.object];
+    float u_rest;
+    const int tri = light.triangles.sample_discrete(u.x, nullptr, &u_rest);
+    const uint32_t* idx = &mesh.indices[3 * size_t(tri)];
+    const Vec3f p0 = mesh.position(idx[0]), p1 = mesh.position(idx[1]), p2 = mesh.position(idx[2]);
+    const Vec3f b = sample_uniform_triangle(Vec2f(u_rest, u.y));
+    *q = p0 * b.x + p1 * b.y + p2 * b.z;
+    *n = normalize(cross(p1 - p0, p2 - p0));
+    if (mesh.has_normals()) {
+      const Vec3f ns = mesh.normal(idx[0]) * b.x + mesh.normal(idx[1]) * b.y + mesh.normal(idx[2]) * b.z;
+      if (length_squared(ns) > 0) *n = face_forward(*n, ns);
+    }
+    *pdf_area = 1 / light.area;  // triangle chosen by area, point uniform on it
+  } else {
+    const SurfacePoint sp = sample_area(scene.quadrics[light.object - scene.meshes.size()], u, pdf_area);
+    *q = sp.p;
+    *n = sp.n;
+  }
+}
+
 bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s) {
   switch (light.kind) {
     case LightKind::Point:
@@ -139,25 +162,7 @@ bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, Ligh
       if (light.sphere_cone && sample_sphere_cone(light, p, u, s)) return true;
       Vec3f q, n;
       float pdf_area;
-      if (light.object < scene.meshes.size()) {
-        const TriangleMesh& mesh = scene.meshes[light.object];
-        float u_rest;
-        const int tri = light.triangles.sample_discrete(u.x, nullptr, &u_rest);
-        const uint32_t* idx = &mesh.indices[3 * size_t(tri)];
-        const Vec3f p0 = mesh.position(idx[0]), p1 = mesh.position(idx[1]), p2 = mesh.position(idx[2]);
-        const Vec3f b = sample_uniform_triangle(Vec2f(u_rest, u.y));
-        q = p0 * b.x + p1 * b.y + p2 * b.z;
-        n = normalize(cross(p1 - p0, p2 - p0));
-        if (mesh.has_normals()) {
-          const Vec3f ns = mesh.normal(idx[0]) * b.x + mesh.normal(idx[1]) * b.y + mesh.normal(idx[2]) * b.z;
-          if (length_squared(ns) > 0) n = face_forward(n, ns);
-        }
-        pdf_area = 1 / light.area;  // triangle chosen by area, point uniform on it
-      } else {
-        const SurfacePoint sp = sample_area(scene.quadrics[light.object - scene.meshes.size()], u, &pdf_area);
-        q = sp.p;
-        n = sp.n;
-      }
+      sample_area_light_point(scene, light, u, &q, &n, &pdf_area);
       const Vec3f d = q - p;
       const float dist = length(d);
       if (!(dist > 0)) return false;

@@ -61,6 +61,11 @@ struct LightSample {
   bool delta;       // true for point, spot and distant lights: BSDF sampling cannot hit them
 };
 
+// A point on an area light chosen uniformly by area (a triangle by area, then a uniform point; or the quadric's
+// area sampling): position, the emitting side's normal (the winding's, turned to the interpolated normal's side
+// when the mesh has normals: the side area_emission lets emit) and the density per unit area.
+void sample_area_light_point(const Scene& scene, const Light& light, Vec2f u, Vec3f* q, Vec3f* n, float* pdf_area);
+
 // Samples light `l` as seen from point p. Returns false when the sample carries no light.
 bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s);
 // Solid-angle density with which sample_light would have chosen direction wi from p, given that the ray hit

@@ -70,27 +70,7 @@ bool sample_emission(const Scene& scene, const Light& light, Vec2f u_pos, Vec2f 
     case LightKind::Area: {
       Vec3f q, n;
       float pdf_area;
-      if (light.object < scene.meshes.size()) {
-        // As sample_light: a triangle by area, a uniform point on it; the normal is the winding's, turned to the
-        // interpolated normal's side when the mesh has normals (the side area_emission lets emit).
-        const TriangleMesh& mesh = scene.meshes[light.object];
-        float u_rest;
-        const int tri = light.triangles.sample_discrete(u_pos.x, nullptr, &u_rest);
-        const uint32_t* idx = &mesh.indices[3 * size_t(tri)];
-        const Vec3f p0 = mesh.position(idx[0]), p1 = mesh.position(idx[1]), p2 = mesh.position(idx[2]);
-        const Vec3f b = sample_uniform_triangle(Vec2f(u_rest, u_pos.y));
-        q = p0 * b.x + p1 * b.y + p2 * b.z;
-        n = normalize(cross(p1 - p0, p2 - p0));
-        if (mesh.has_normals()) {
-          const Vec3f ns = mesh.normal(idx[0]) * b.x + mesh.normal(idx[1]) * b.y + mesh.normal(idx[2]) * b.z;
-          if (length_squared(ns) > 0) n = face_forward(n, ns);
-        }
-        pdf_area = 1 / light.area;
-      } else {
-        const SurfacePoint sp = sample_area(scene.quadrics[light.object - scene.meshes.size()], u_pos, &pdf_area);
-        q = sp.p;
-        n = sp.n;
-      }
+      sample_area_light_point(scene, light, u_pos, &q, &n, &pdf_area);
       if (!(pdf_area > 0) || !std::isfinite(pdf_area)) return false;
       float side_pdf = 1;
       if (light.two_sided) {
