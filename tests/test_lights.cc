@@ -55,6 +55,15 @@ double integrate(const std::function<double(double)>& f, double a, double b) {
   return s * half;
 }
 
+// An orthographic camera 3 units above the origin looking straight down (+z is the image's up), `extent` wide.
+CameraDesc top_down_camera(float extent) {
+  CameraDesc cam;
+  cam.kind = CameraKind::Orthographic;
+  cam.camera_to_world = look_at({0, 3, 0}, {0, 0, 0}, {0, 0, 1});
+  cam.extent = extent;
+  return cam;
+}
+
 ShapeDesc quad_shape(float y, float half, std::shared_ptr<MaterialDesc> m) {
   ShapeDesc q;
   q.kind = ShapeDesc::Kind::Mesh;
@@ -463,11 +472,7 @@ TEST_CASE("Distant light: delta, irradiance, power from the scene's bounding sph
   SceneBuilder b;
   b.add_shape(quad_shape(0, 1, matte(0.5f)));
   b.add_light(l);
-  CameraDesc cam;
-  cam.kind = CameraKind::Orthographic;
-  cam.camera_to_world = look_at({0, 3, 0}, {0, 0, 0}, {0, 0, 1});
-  cam.extent = 1;
-  b.set_camera(cam);
+  b.set_camera(top_down_camera(1));
   const auto scene = b.flatten();
   LightSample s;
   REQUIRE(sample_light(*scene, scene->lights[0], {0, 0, 0}, {0.3f, 0.3f}, &s));
@@ -495,11 +500,7 @@ TEST_CASE("Spot light renders intensity / d^2 under the axis", "[light][spot][re
   l.cos_total = std::cos(20 * kPi / 180);
   l.cos_falloff_start = std::cos(15 * kPi / 180);
   b.add_light(l);
-  CameraDesc cam;
-  cam.kind = CameraKind::Orthographic;
-  cam.camera_to_world = look_at({0, 3, 0}, {0, 0, 0}, {0, 0, 1});
-  cam.extent = 4;
-  b.set_camera(cam);
+  b.set_camera(top_down_camera(4));
   const auto scene = b.flatten();
   RenderSettings rs;
   rs.width = rs.height = 16;
@@ -632,11 +633,7 @@ TEST_CASE("MIS with environment and sky lights: a lit plane matches the irradian
     SceneBuilder b;
     b.add_shape(quad_shape(0, 1, matte(0.5f)));
     b.add_light(light);
-    CameraDesc cam;
-    cam.kind = CameraKind::Orthographic;
-    cam.camera_to_world = look_at({0, 3, 0}, {0, 0, 0}, {0, 0, 1});
-    cam.extent = 0.2f;
-    b.set_camera(cam);
+    b.set_camera(top_down_camera(0.2f));
     const auto scene = b.flatten();
     RenderSettings rs;
     rs.width = rs.height = 8;

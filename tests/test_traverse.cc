@@ -362,9 +362,11 @@ TEST_CASE("rays from inside a closed mesh never escape, even through vertices an
   }
 }
 
-TEST_CASE("axis-parallel rays and zero direction components on box-aligned geometry", "[traverse]") {
-  // Small cubes on an integer grid: node bounds lie on planes where the rays' origins are, and the rays run
-  // along those planes, so slabs see 0 * inf = NaN and +-inf reciprocals. Expected: brute force.
+namespace {
+
+// Unit cubes on an integer grid in a 3D checkerboard pattern (x + y + z even): node bounds lie on the integer and
+// half-integer planes that the axis-parallel test rays start on and run along.
+Soup checkerboard_cubes() {
   Soup soup;
   for (int x = -2; x <= 2; ++x)
     for (int y = -2; y <= 2; ++y)
@@ -376,6 +378,15 @@ TEST_CASE("axis-parallel rays and zero direction components on box-aligned geome
         const Soup cs = soup_of(c);
         soup.insert(soup.end(), cs.begin(), cs.end());
       }
+  return soup;
+}
+
+}  // namespace
+
+TEST_CASE("axis-parallel rays and zero direction components on box-aligned geometry", "[traverse]") {
+  // Small cubes on an integer grid: node bounds lie on planes where the rays' origins are, and the rays run
+  // along those planes, so slabs see 0 * inf = NaN and +-inf reciprocals. Expected: brute force.
+  const Soup soup = checkerboard_cubes();
   Rays rays;
   const float coords[] = {-3, -2.5f, -2, -1.5f, -1, -0.5f, 0, 0.5f, 1, 1.5f, 2.5f};
   const Vec3f dirs[] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},  {0, -1, 0},  {0, 0, 1},     {0, 0, -1},
@@ -403,17 +414,7 @@ TEST_CASE("packets sharing a direction with zero components, spread origins (int
   // As above, but consecutive rays share one direction (whole packets in one octant, some with +-0 or tiny
   // components, i.e. infinite or huge reciprocals) while their origins spread over the grid: the any-hit packet
   // kernel culls children by the packet's interval of origins and reciprocals there. Expected: brute force.
-  Soup soup;
-  for (int x = -2; x <= 2; ++x)
-    for (int y = -2; y <= 2; ++y)
-      for (int z = -1; z <= 1; ++z) {
-        if ((x + y + z) % 2 != 0) continue;
-        TriangleMesh c = make_cube();
-        for (size_t i = 0; i < c.vertex_count(); ++i)
-          c.x[i] = x + 0.5f * c.x[i], c.y[i] = y + 0.5f * c.y[i], c.z[i] = z + 0.5f * c.z[i];
-        const Soup cs = soup_of(c);
-        soup.insert(soup.end(), cs.begin(), cs.end());
-      }
+  const Soup soup = checkerboard_cubes();
   Rays rays;
   const float coords[] = {-3, -2.5f, -2, -1.5f, -1, -0.5f, 0, 0.5f, 1, 1.5f, 2.5f};
   const Vec3f dirs[] = {{0, 0, 1},     {1, 0.5f, 1},  {-0.0f, 0.25f, 1}, {0.3f, -0.0f, 1}, {1e-30f, 0, 1},

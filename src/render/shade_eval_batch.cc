@@ -33,6 +33,16 @@ GatherBuffers& buffers() {
   return b;
 }
 
+// Columns 0-5 of the gather buffers: wo and wi of candidate slot i (the EvalDirsSoA layout).
+void put_directions(float* const* p, size_t i, Vec3f wo, Vec3f wi) {
+  p[0][i] = wo.x;
+  p[1][i] = wo.y;
+  p[2][i] = wo.z;
+  p[3][i] = wi.x;
+  p[4][i] = wi.y;
+  p[5][i] = wi.z;
+}
+
 }  // namespace
 
 void eval_batch_simd(ShadeScratch<LambertBsdf>& sc) {
@@ -67,12 +77,7 @@ void eval_batch_simd(ShadeScratch<OrenNayarBsdf>& sc) {
     const LightCandidate& c = sc.lights[k];
     const OrenNayarBsdf& b = sc.bsdf[c.slot];
     const Vec3f wo = sc.wo_local[c.slot];
-    p[0][k] = wo.x;
-    p[1][k] = wo.y;
-    p[2][k] = wo.z;
-    p[3][k] = c.wi_local.x;
-    p[4][k] = c.wi_local.y;
-    p[5][k] = c.wi_local.z;
+    put_directions(p, k, wo, c.wi_local);
     p[6][k] = b.albedo.r;
     p[7][k] = b.albedo.g;
     p[8][k] = b.albedo.b;
@@ -101,12 +106,7 @@ void eval_batch_simd(ShadeScratch<ConductorBsdf>& sc) {
       continue;
     }
     g.index.push_back(uint32_t(k));
-    p[0][m] = wo.x;
-    p[1][m] = wo.y;
-    p[2][m] = wo.z;
-    p[3][m] = c.wi_local.x;
-    p[4][m] = c.wi_local.y;
-    p[5][m] = c.wi_local.z;
+    put_directions(p, m, wo, c.wi_local);
     p[6][m] = b.eta.r;
     p[7][m] = b.eta.g;
     p[8][m] = b.eta.b;
