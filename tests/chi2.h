@@ -5,10 +5,23 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace torte::test {
+
+// 4-point Gauss-Legendre quadrature over [a, b], for the expected counts of histogram bins: exact for polynomials
+// up to degree 7 (many pdfs are polynomials in cos(theta)), and it never evaluates the endpoints, so a pdf that
+// jumps at a bin edge (the hemisphere's rim, a cone's boundary) is integrated from the correct side.
+inline double integrate(const std::function<double(double)>& f, double a, double b) {
+  static constexpr double x[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+  static constexpr double w[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+  const double half = (b - a) / 2, mid = (a + b) / 2;
+  double s = 0;
+  for (int i = 0; i < 4; ++i) s += w[i] * f(mid + half * x[i]);
+  return s * half;
+}
 
 // Regularized upper incomplete gamma Q(a, x) (Numerical Recipes: series for x < a + 1, continued fraction else).
 inline double gamma_q(double a, double x) {

@@ -12,18 +12,13 @@
 #include "core/transform.h"
 #include "geometry/quadric.h"
 #include "geometry/triangle.h"
+#include "test_random.h"
 
 using namespace torte;
+using torte::test::random_vec;
+using torte::test::random_direction;
 
 namespace {
-
-Vec3f random_vec(Pcg32& rng) { return {rng.next_float(), rng.next_float(), rng.next_float()}; }
-
-Vec3f random_direction(Pcg32& rng) {
-  const float z = 1 - 2 * rng.next_float(), phi = 2 * kPi * rng.next_float();
-  const float r = std::sqrt(std::max(0.0f, 1 - z * z));
-  return {r * std::cos(phi), r * std::sin(phi), z};
-}
 
 struct Tri {
   Vec3f a, b, c;

@@ -17,18 +17,13 @@
 #include "core/rng.h"
 #include "geometry/mesh.h"
 #include "geometry/triangle.h"
+#include "test_random.h"
 
 using namespace torte;
+using torte::test::random_vec;
+using torte::test::random_direction;
 
 namespace {
-
-Vec3f random_vec(Pcg32& rng) { return {rng.next_float(), rng.next_float(), rng.next_float()}; }
-
-Vec3f random_direction(Pcg32& rng) {
-  const float z = 1 - 2 * rng.next_float(), phi = 2 * kPi * rng.next_float();
-  const float r = std::sqrt(std::max(0.0f, 1 - z * z));
-  return {r * std::cos(phi), r * std::sin(phi), z};
-}
 
 // Three vertices per triangle. With `clusters` > 0 the centres gather around that many random points, a
 // distribution where the SAH clearly beats median splits.

@@ -22,8 +22,11 @@
 #include "render/render.h"
 #include "scene/builder.h"
 #include "scene_helpers.h"
+#include "test_random.h"
 
 using namespace torte;
+using torte::test::next_2d;
+using torte::test::integrate;
 using namespace torte::test;
 using torte::test::chi2_test;
 using torte::test::Chi2Result;
@@ -38,21 +41,6 @@ Chi2Result run_chi2(const std::vector<double>& observed, const std::vector<doubl
   Chi2Result r = chi2_test(observed, expected, 0.01, kChi2Tests);
   if (std::getenv("TORTE_CHI2_VERBOSE")) std::printf("%s\n", r.message.c_str());
   return r;
-}
-
-Vec2f next_2d(Pcg32& rng) {
-  const float x = rng.next_float();
-  return {x, rng.next_float()};
-}
-
-// 4-point Gauss-Legendre over [a, b] (never evaluates the endpoints).
-double integrate(const std::function<double(double)>& f, double a, double b) {
-  static constexpr double x[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-  static constexpr double w[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
-  const double half = (b - a) / 2, mid = (a + b) / 2;
-  double s = 0;
-  for (int i = 0; i < 4; ++i) s += w[i] * f(mid + half * x[i]);
-  return s * half;
 }
 
 // An orthographic camera 3 units above the origin looking straight down (+z is the image's up), `extent` wide.

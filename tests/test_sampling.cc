@@ -17,8 +17,11 @@
 #include "core/rng.h"
 #include "core/sampler.h"
 #include "core/sampling.h"
+#include "test_random.h"
 
 using namespace torte;
+using torte::test::next_2d;
+using torte::test::integrate;
 using torte::test::chi2_test;
 using torte::test::Chi2Result;
 
@@ -31,23 +34,6 @@ constexpr double kTwoPi = 2 * 3.14159265358979323846;
 
 Chi2Result run_chi2(const std::vector<double>& observed, const std::vector<double>& expected) {
   return chi2_test(observed, expected, kSignificance, kChi2Tests);
-}
-
-Vec2f next_2d(Pcg32& rng) {
-  const float x = rng.next_float();
-  return {x, rng.next_float()};
-}
-
-// 4-point Gauss-Legendre quadrature over [a, b]: exact for polynomials up to degree 7 (the pdfs here are
-// polynomials in cos(theta)), and it never evaluates the endpoints, so a pdf that jumps at a bin edge (the
-// hemisphere's rim, a cone's boundary) is integrated from the correct side.
-double integrate(const std::function<double(double)>& f, double a, double b) {
-  static constexpr double x[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-  static constexpr double w[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
-  const double half = (b - a) / 2, mid = (a + b) / 2;
-  double s = 0;
-  for (int i = 0; i < 4; ++i) s += w[i] * f(mid + half * x[i]);
-  return s * half;
 }
 
 // Directions binned by (cos theta, phi): n_cos bins over [cos_lo, cos_hi] and n_phi bins over [0, 2 pi). In this

@@ -15,8 +15,10 @@
 #include "core/rng.h"
 #include "render/shade.h"
 #include "shade_eval.h"
+#include "test_random.h"
 
 using namespace torte;
+using torte::test::random_direction;
 
 namespace {
 
@@ -35,12 +37,6 @@ void for_each_target(F&& f) {
     REQUIRE(std::string(shade_eval_target_name()) == name);
     f(name);
   }
-}
-
-Vec3f random_direction(Pcg32& rng) {
-  const float z = 1 - 2 * rng.next_float(), phi = 2 * kPi * rng.next_float();
-  const float r = std::sqrt(std::max(0.0f, 1 - z * z));
-  return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
 // A direction with the given z (unit length, random azimuth).

@@ -14,16 +14,12 @@
 #include "core/transform.h"
 #include "geometry/quadric.h"
 #include "geometry/triangle.h"
+#include "test_random.h"
 
 using namespace torte;
+using torte::test::random_direction;
 
 namespace {
-
-Vec3f random_direction(Pcg32& rng) {
-  const float z = 1 - 2 * rng.next_float(), phi = 2 * kPi * rng.next_float();
-  const float r = std::sqrt(std::max(0.0f, 1 - z * z));
-  return {r * std::cos(phi), r * std::sin(phi), z};
-}
 
 // translate . rotate . non-uniform scale, and a mirrored variant (negative determinant).
 Transform general_transform() {

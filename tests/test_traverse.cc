@@ -20,20 +20,15 @@
 #include "geometry/subdivide.h"
 #include "geometry/triangle.h"
 #include "traverse.h"
+#include "test_random.h"
 
 using namespace torte;
+using torte::test::random_vec;
+using torte::test::random_direction;
 
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
-Vec3f random_vec(Pcg32& rng) { return {rng.next_float(), rng.next_float(), rng.next_float()}; }
-
-Vec3f random_direction(Pcg32& rng) {
-  const float z = 1 - 2 * rng.next_float(), phi = 2 * kPi * rng.next_float();
-  const float r = std::sqrt(std::max(0.0f, 1 - z * z));
-  return {r * std::cos(phi), r * std::sin(phi), z};
-}
 
 // Triangles as vertex triples (p0, p1, p2 per triangle), the caller's numbering.
 using Soup = std::vector<Vec3f>;
