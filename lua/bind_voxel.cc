@@ -8,7 +8,9 @@
 //   g:get(x, y, z), g:count(), g:chunks(), g:bounds() -> {lo}, {hi}
 //   g:define{id = 1, material = m}          -- solid cube, one material
 //   g:define{id = 2, material = m, faces = {top = m1, bottom = m2, side = m3}}  -- or "+x", "-x", "+y", ... "-z"
+//   g:define{id = 4, material = m, emission = {8, 6, 3}}  -- an emitting cube: its exposed faces are area lights
 //   g:define{id = -3, shape = group}        -- cell shape: a torte.group() of shapes modelling the unit cell [0,1]^3
+//                                           -- (meshes in it may have emission = {...}: they emit on both sides)
 //   g:build() -> {voxels, cells, nodes, bytes, bytes_per_voxel, seconds}  (cells: voxels of the padded box)   (done by g:shape when the grid changed)
 //   g:save(path)                            -- raw chunk dump, for TORTE_BENCH_VOXEL_WORLD (bench/bench_voxel.cc)
 //   scene:add(g:shape{transform = T, material = default})  -- or torte.shape.voxels{grid = g, ...}
@@ -150,6 +152,9 @@ int grid_define(lua_State* L) {
   if (id > 0) {
     VoxelCubeDef def;
     def.id = id;
+    def.emission = kw.rgb("emission", Rgb(0));
+    if (!(def.emission.r >= 0 && def.emission.g >= 0 && def.emission.b >= 0))
+      kw.fail("emission", "must be a non-negative radiance {r, g, b}");
     auto all = kw.object<MaterialDesc>("material", true);
     for (auto& f : def.faces) f = all;
     kw.push("faces");
@@ -168,6 +173,10 @@ int grid_define(lua_State* L) {
   } else {
     VoxelCellDef def;
     def.id = id;
+    kw.push("emission");
+    if (!lua_isnil(L, -1))
+      kw.fail("emission", "cell shapes emit through their own shapes: give the group's meshes an emission");
+    lua_pop(L, 1);
     def.shapes = kw.object<SceneBuilder>("shape");
     kw.finish();
     g.cells[id] = std::move(def);

@@ -53,6 +53,12 @@ bool sample_sphere_cone(const Light& light, Vec3f p, Vec2f u, LightSample* s) {
 
 }  // namespace
 
+const SurfaceEmission* patch_emission(const Scene& scene, const SurfaceHit& hit) {
+  if (hit.material < 0 || size_t(hit.material) >= scene.override_emission.size()) return nullptr;
+  const SurfaceEmission& e = scene.override_emission[size_t(hit.material)];
+  return e.light >= 0 ? &e : nullptr;
+}
+
 Rgb area_emission(const Light& light, const SurfaceHit& hit, Vec3f w) {
   if (light.two_sided || dot(hit.ng, w) < 0) return light.radiance;
   return {};
@@ -158,6 +164,20 @@ bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, Ligh
       s->delta = false;
       return !s->radiance.is_black();
     }
+    case LightKind::Patches: {
+      const PatchPoint pp = light.patches->sample(u);
+      const Vec3f d = pp.q - p;
+      const float dist = length(d);
+      if (!(dist > 0)) return false;
+      s->wi = d / dist;
+      s->distance = dist;
+      if (!pp.two_sided && dot(pp.n, -s->wi) <= 0) return false;
+      s->pdf = area_to_solid_angle(pp.pdf_area, p, pp.q, pp.n);
+      if (!(s->pdf > 0) || !std::isfinite(s->pdf)) return false;
+      s->radiance = pp.radiance;
+      s->delta = false;
+      return true;
+    }
     case LightKind::Area: {
       if (light.sphere_cone && sample_sphere_cone(light, p, u, s)) return true;
       Vec3f q, n;
@@ -188,6 +208,11 @@ float light_pdf(const Scene& scene, const Light& light, Vec3f p, Vec3f wi, const
     case LightKind::Infinite: return uniform_sphere_pdf();
     case LightKind::Environment: return light.environment->sampling.pdf(wi);
     case LightKind::Sky: return light.sky->pdf(wi);
+    case LightKind::Patches: {
+      const SurfaceEmission* e = hit ? patch_emission(scene, *hit) : nullptr;
+      if (!e) return 0;
+      return area_to_solid_angle(light.patches->pdf_area(e->radiance, e->two_sided), p, p + wi * t, hit->ng);
+    }
     case LightKind::Area: {
       if (light.sphere_cone) {
         float omc, dc;
@@ -217,6 +242,7 @@ float light_power(const Scene& scene, const Light& light) {
     case LightKind::Infinite: return 4 * kPi * disk * light.radiance.average();
     case LightKind::Environment: return disk * light.environment->integral;
     case LightKind::Sky: return disk * (light.sky->sky_integral + light.sky->sun_integral);
+    case LightKind::Patches: return kPi * light.patches->weight();
     case LightKind::Area: return kPi * light.area * light.radiance.average() * (light.two_sided ? 2.0f : 1.0f);
   }
   return 0;

@@ -14,6 +14,8 @@
 //   Infinite     uniform radiance from every direction.
 //   Environment  equirectangular image (light/environment.h), importance-sampled over the whole sphere.
 //   Sky          Preetham sky plus sun disk (light/sky.h).
+//   Patches      many small diffuse emitters in world space, chosen by power (light/emissive_patches.h): the
+//                faces of emitting voxels and the emitting shapes in voxel cells.
 // Infinite, Environment and Sky are "infinite-like": rays that escape the scene see escaped_radiance().
 #pragma once
 #include <cstdint>
@@ -22,6 +24,7 @@
 #include "core/rgb.h"
 #include "core/sampling.h"
 #include "core/vec.h"
+#include "light/emissive_patches.h"
 #include "light/environment.h"
 #include "light/sky.h"
 
@@ -30,8 +33,9 @@ namespace torte {
 class Scene;
 struct SurfaceHit;
 struct Quadric;
+struct SurfaceEmission;
 
-enum class LightKind : uint8_t { Point, Area, Infinite, Spot, Distant, Environment, Sky };
+enum class LightKind : uint8_t { Point, Area, Infinite, Spot, Distant, Environment, Sky, Patches };
 
 struct Light {
   LightKind kind = LightKind::Point;
@@ -51,6 +55,7 @@ struct Light {
   float sphere_radius = 0;
   std::shared_ptr<const EnvironmentMap> environment;  // Environment
   std::shared_ptr<const SkyModel> sky;                // Sky
+  std::shared_ptr<const EmissivePatches> patches;     // Patches
 };
 
 struct LightSample {
@@ -73,6 +78,9 @@ bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, Ligh
 float light_pdf(const Scene& scene, const Light& light, Vec3f p, Vec3f wi, const SurfaceHit* hit, float t);
 // Radiance an area light emits from `hit` towards -w (w is the ray direction).
 Rgb area_emission(const Light& light, const SurfaceHit& hit, Vec3f w);
+// Emission of a surface that is part of a Patches light (a voxel face or cell shape): the scene's
+// override_emission entry of its material override, or nullptr.
+const SurfaceEmission* patch_emission(const Scene& scene, const SurfaceHit& hit);
 // True for lights that rays escaping the scene can see (Infinite, Environment, Sky).
 inline bool is_infinite_light(const Light& light) {
   return light.kind == LightKind::Infinite || light.kind == LightKind::Environment || light.kind == LightKind::Sky;

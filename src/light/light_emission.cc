@@ -67,6 +67,23 @@ bool sample_emission(const Scene& scene, const Light& light, Vec2f u_pos, Vec2f 
       s->weight = le * (disk_origin(scene, s->dir, u_pos, &s->origin) / pdf);
       return !s->weight.is_black();
     }
+    case LightKind::Patches: {
+      const PatchPoint pp = light.patches->sample(u_pos);
+      if (!(pp.pdf_area > 0) || !std::isfinite(pp.pdf_area)) return false;
+      Vec3f n = pp.n;
+      float side_pdf = 1;
+      if (pp.two_sided) {
+        side_pdf = 0.5f;
+        if (uc < 0.5f) n = -n;
+      }
+      const Vec3f local = sample_cosine_hemisphere(u_dir);
+      if (!(local.z > 0)) return false;
+      s->origin = pp.q;
+      s->normal = n;
+      s->dir = normalize(Frame::from_z(n).to_world(local));
+      s->weight = pp.radiance * (kPi / (pp.pdf_area * side_pdf));
+      return !s->weight.is_black();
+    }
     case LightKind::Area: {
       Vec3f q, n;
       float pdf_area;

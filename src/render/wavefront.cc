@@ -144,6 +144,11 @@ void WavefrontRenderer::add_emission_and_queue(RenderStats&) {
         const float w = emission_weight(i, object.area_light, light_pdf(scene, light, paths_.origin[i], d, &s, hit.t));
         paths_.radiance[i] += paths_.beta[i] * le * w;
       }
+    } else if (const SurfaceEmission* e = patch_emission(scene, s); e && (e->two_sided || dot(s.ng, d) < 0)) {
+      // An emitting voxel face or cell shape (a Patches light).
+      const Light& light = scene.lights[size_t(e->light)];
+      const float w = emission_weight(i, e->light, light_pdf(scene, light, paths_.origin[i], d, &s, hit.t));
+      paths_.radiance[i] += paths_.beta[i] * e->radiance * w;
     }
     const bool direct_done = direct && (paths_.flags[i] & kPathScattered);
     if (paths_.depth[i] >= max_depth_ || direct_done) {

@@ -25,6 +25,14 @@ struct SceneObject {
   int32_t area_light = -1;  // index into Scene::lights, -1 if the object does not emit
 };
 
+// Emission of a material override (a voxel face or an object of a voxel cell shape) that belongs to a Patches
+// light: what a ray hitting it sees, and which light samples it.
+struct SurfaceEmission {
+  Rgb radiance;
+  int32_t light = -1;  // index into Scene::lights (a LightKind::Patches light), -1 = does not emit
+  bool two_sided = false;
+};
+
 // A group of shapes placed by instances (torte.group / scene:frame): its own geometry set, in group space.
 struct Prototype {
   std::vector<TriangleMesh> meshes;
@@ -50,6 +58,8 @@ class Scene {
   std::vector<SceneObject> objects;
   // Materials that replace an object's for part of it (SurfaceHit::material): voxel faces and cell shapes.
   std::vector<MaterialRef> material_overrides;
+  // Parallel to material_overrides up to the last emitting override (shorter, usually empty, otherwise).
+  std::vector<SurfaceEmission> override_emission;
   // The material at a hit: the voxel face's override when it has one, else its object's.
   MaterialRef material_of(const SurfaceHit& s) const {
     return s.material >= 0 ? material_overrides[size_t(s.material)] : objects[s.object].material;

@@ -6,6 +6,8 @@
 #include <memory>
 #include <vector>
 
+#include "core/rgb.h"
+
 #include "voxel/voxel_tree.h"
 
 namespace torte {
@@ -17,10 +19,11 @@ class SceneBuilder;
 struct VoxelCubeDef {
   int16_t id = 1;
   std::array<std::shared_ptr<const MaterialDesc>, 6> faces;
+  Rgb emission;  // radiance of every exposed face (black: does not emit)
 };
 
 // A cell-shape id (< 0): a group of shapes modelling the unit cell [0, 1]^3 (meshes and analytic shapes with
-// their own materials; no instances, no emitters).
+// their own materials; no instances). Meshes may emit (their `emission`); they emit on both sides.
 struct VoxelCellDef {
   int16_t id = -1;
   std::shared_ptr<const SceneBuilder> shapes;

@@ -73,9 +73,34 @@ class VoxelTree {
   Bounds3f bounds() const;
   // The id of voxel (x, y, z) by descending the tree (0 outside the box).
   int16_t lookup(int x, int y, int z) const;
+  // Calls f(lo, size, id) for every leaf whose id is not 0: the leaf's box is [lo, lo + size) per axis in voxel
+  // coordinates (int lo[3], int size[3]). Empty subtrees cost one node each.
+  template <class F>
+  void for_each_leaf(F&& f) const {
+    int lo[3] = {origin_[0], origin_[1], origin_[2]}, lg[3] = {lg_[0], lg_[1], lg_[2]};
+    visit_leaves(0, lo, lg, f);
+  }
   const VoxelBuildStats& stats() const { return stats_; }
 
  private:
+  template <class F>
+  void visit_leaves(size_t node, const int lo[3], const int lg[3], F& f) const {
+    const VoxelNode n = nodes_[node];
+    if (n.is_leaf()) {
+      if (n.id() != 0) {
+        const int size[3] = {1 << lg[0], 1 << lg[1], 1 << lg[2]};
+        f(lo, size, n.id());
+      }
+      return;
+    }
+    const int a = n.axis();
+    int clg[3] = {lg[0], lg[1], lg[2]};
+    --clg[a];
+    int hi_lo[3] = {lo[0], lo[1], lo[2]};
+    hi_lo[a] += 1 << clg[a];
+    visit_leaves(2 * size_t(n.pair()), lo, clg, f);
+    visit_leaves(2 * size_t(n.pair()) + 1, hi_lo, clg, f);
+  }
   std::vector<VoxelNode> nodes_{VoxelNode::leaf(0), VoxelNode{}};
   int origin_[3] = {0, 0, 0};
   int lg_[3] = {kVoxelChunkBits, kVoxelChunkBits, kVoxelChunkBits};

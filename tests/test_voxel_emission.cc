@@ -1,0 +1,305 @@
+// Emitting voxels: the exposed faces of emitting cube ids and the emitting meshes of cell ids become one Patches
+// light (light/emissive_patches.h). Checked here: the patch sampler against its pdf (chi-square), which faces
+// count as exposed, light_pdf = sample pdf through real hits, and renders against the same emitters built as
+// ordinary mesh area lights (an independent, already tested code path).
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "chi2.h"
+#include "core/error.h"
+#include "core/rng.h"
+#include "render/render.h"
+#include "scene/builder.h"
+#include "scene_helpers.h"
+#include "test_random.h"
+
+using namespace torte;
+using torte::test::matte;
+
+namespace {
+
+ShapeDesc voxel_desc(const VoxelGrid& grid, std::vector<VoxelCubeDef> cubes, std::vector<VoxelCellDef> cells,
+                     const Transform& t = Transform()) {
+  auto v = std::make_shared<VoxelShape>();
+  v->tree = std::make_shared<VoxelTree>(VoxelTree::build(grid));
+  v->cubes = std::move(cubes);
+  v->cells = std::move(cells);
+  ShapeDesc s;
+  s.kind = ShapeDesc::Kind::Voxel;
+  s.voxels = std::move(v);
+  s.transform = t;
+  s.material = matte(0.5f);
+  return s;
+}
+
+VoxelCubeDef emitting_cube(int16_t id, Rgb radiance) {
+  VoxelCubeDef d;
+  d.id = id;
+  d.emission = radiance;
+  return d;
+}
+
+ShapeDesc mesh_shape(TriangleMesh mesh, const Transform& t, std::shared_ptr<MaterialDesc> m) {
+  ShapeDesc s;
+  s.mesh = std::make_shared<TriangleMesh>(std::move(mesh));
+  s.transform = t;
+  s.material = std::move(m);
+  return s;
+}
+
+// A cell id whose group holds one emitting two-sided quad (a "flame" across the cell's diagonal) above a
+// non-emitting stick.
+VoxelCellDef flame_cell(int16_t id, Rgb radiance) {
+  auto g = std::make_shared<SceneBuilder>();
+  g->add_shape(mesh_shape(make_cube(), translate({0.5f, 0.2f, 0.5f}) * scale({0.05f, 0.2f, 0.05f}), matte(0.3f)));
+  ShapeDesc flame = mesh_shape(make_polygon({{0.2f, 0.4f, 0.2f}, {0.8f, 0.4f, 0.8f}, {0.8f, 0.9f, 0.8f},
+                                             {0.2f, 0.9f, 0.2f}}),
+                               Transform(), matte(0.2f));
+  flame.emission = radiance;
+  g->add_shape(flame);
+  VoxelCellDef c;
+  c.id = id;
+  c.shapes = g;
+  return c;
+}
+
+const Light* patches_light(const Scene& scene) {
+  for (const Light& l : scene.lights)
+    if (l.kind == LightKind::Patches) return &l;
+  return nullptr;
+}
+
+Rgb tile_mean(const Image& img, int x0, int y0, int x1, int y1) {
+  Rgb sum(0);
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) sum += img.at(x, y);
+  return sum * (1.0f / float((x1 - x0) * (y1 - y0)));
+}
+
+}  // namespace
+
+TEST_CASE("EmissivePatches: chi-square of patch and position choice, pdf_area = pmf / area", "[light][voxel][chi2]") {
+  EmissivePatches p;
+  // Patches of different size, radiance and sidedness; two triangles.
+  p.add_parallelogram({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, Rgb(1), false);
+  p.add_parallelogram({2, 0, 0}, {2, 0, 0}, {0, 0.5f, 0}, {0, 0, 1}, Rgb(3, 1, 2), false);
+  p.add_parallelogram({0, 3, 0}, {0.5f, 0, 0}, {0, 0, 0.5f}, {0, 1, 0}, Rgb(4), true);
+  p.add_triangle({5, 0, 0}, {6, 0, 0}, {5, 1, 0}, Rgb(2), true);
+  p.add_triangle({7, 0, 0}, {9, 0, 0}, {7, 1, 0}, Rgb(0.5f), false);
+  p.add_triangle({0, 0, 0}, {1, 1, 1}, {2, 2, 2}, Rgb(5), false);  // degenerate: dropped
+  p.add_parallelogram({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, Rgb(0), false);  // black: dropped
+  p.finish();
+  REQUIRE(p.size() == 5);
+  double w[5], W = 0;
+  for (size_t k = 0; k < 5; ++k) {
+    const EmissivePatch& q = p.patch(k);
+    w[k] = q.area * q.radiance.average() * (q.two_sided ? 2 : 1);
+    W += w[k];
+  }
+  CHECK(p.weight() == Approx(W).epsilon(1e-6));
+  // Bins: for parallelograms a 3x3 grid over (s, t), for triangles one bin; expected = pmf * cell fraction.
+  std::vector<double> expected, observed;
+  std::vector<size_t> first(5);
+  for (size_t k = 0; k < 5; ++k) {
+    first[k] = expected.size();
+    const int cells = p.patch(k).triangle ? 1 : 9;
+    for (int c = 0; c < cells; ++c) expected.push_back(w[k] / W / cells);
+  }
+  observed.assign(expected.size(), 0);
+  Pcg32 rng(7);
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    const PatchPoint s = p.sample(test::next_2d(rng));
+    size_t k = 5;
+    for (size_t j = 0; j < 5 && k == 5; ++j) {
+      const EmissivePatch& q = p.patch(j);
+      // Solve q.p + a e1 + b e2 = s.q in the patch's plane (least squares with the 2x2 Gram matrix).
+      const Vec3f d = s.q - q.p;
+      const float g11 = dot(q.e1, q.e1), g12 = dot(q.e1, q.e2), g22 = dot(q.e2, q.e2);
+      const float det = g11 * g22 - g12 * g12;
+      const float a = (g22 * dot(d, q.e1) - g12 * dot(d, q.e2)) / det;
+      const float b = (g11 * dot(d, q.e2) - g12 * dot(d, q.e1)) / det;
+      if (length(d - q.e1 * a - q.e2 * b) > 1e-4f) continue;
+      const float e = -1e-5f;
+      if (a < e || b < e || (q.triangle ? a + b > 1 - e : (a > 1 - e || b > 1 - e))) continue;
+      k = j;
+      CHECK(s.pdf_area == Approx(float(w[j] / W) / q.area).epsilon(1e-4));
+      CHECK(s.radiance == q.radiance);
+      if (q.triangle) {
+        observed[first[j]] += 1;
+      } else {
+        const int ca = std::min(2, int(a * 3)), cb = std::min(2, int(b * 3));
+        observed[first[j] + size_t(ca * 3 + cb)] += 1;
+      }
+    }
+    REQUIRE(k < 5);
+  }
+  for (double& e : expected) e *= n;
+  const auto r = test::chi2_test(observed, expected);
+  INFO(r.message);
+  CHECK(r.passed);
+}
+
+TEST_CASE("Voxel emitters: only exposed faces become patches; cell meshes emit per placement", "[light][voxel]") {
+  VoxelGrid grid;
+  // A 3x3x3 block of emitting id 1: 54 exposed faces (the centre and inner faces are buried).
+  for (int x = 0; x < 3; ++x)
+    for (int y = 0; y < 3; ++y)
+      for (int z = 0; z < 3; ++z) grid.set(x, y, z, 1);
+  // A non-emitting solid cube (id 2) hides one face of the block, a cell shape (id -1) hides nothing.
+  grid.set(3, 1, 1, 2);
+  grid.set(-1, 1, 1, -1);
+  // Two separate flames (id -2): 2 placements x 2 triangles.
+  grid.set(10, 0, 0, -2);
+  grid.set(12, 0, 0, -2);
+  auto slab_group = std::make_shared<SceneBuilder>();
+  slab_group->add_shape(mesh_shape(make_cube(), translate({0.5f, 0.25f, 0.5f}) * scale({0.5f, 0.25f, 0.5f}),
+                                   matte(0.5f)));
+  VoxelCellDef slab;
+  slab.id = -1;
+  slab.shapes = slab_group;
+  SceneBuilder b;
+  b.add_shape(voxel_desc(grid, {emitting_cube(1, Rgb(2)), VoxelCubeDef{2, {}, Rgb(0)}},
+                         {slab, flame_cell(-2, Rgb(3))}, scale({2, 1, 1})));
+  const auto scene = b.flatten();
+  const Light* l = patches_light(*scene);
+  REQUIRE(l != nullptr);
+  const EmissivePatches& p = *l->patches;
+  size_t faces = 0, triangles = 0;
+  float face_area = 0;
+  for (size_t k = 0; k < p.size(); ++k) {
+    if (p.patch(k).triangle) {
+      ++triangles;
+      CHECK(p.patch(k).two_sided);
+    } else {
+      ++faces;
+      face_area += p.patch(k).area;
+      CHECK_FALSE(p.patch(k).two_sided);
+    }
+  }
+  CHECK(faces == 53);
+  CHECK(triangles == 4);
+  // Under scale(2, 1, 1): faces facing +-x keep area 1 (8 of them with the hidden one gone, 9 - 1 + 9), the
+  // others double.
+  CHECK(face_area == Approx(17 * 1 + 36 * 2));
+  CHECK(light_power(*scene, *l) > 0);
+}
+
+TEST_CASE("Voxel emitters: light_pdf through a hit equals the sample pdf", "[light][voxel]") {
+  VoxelGrid grid;
+  for (int x = -3; x <= 3; ++x)
+    for (int z = -3; z <= 3; ++z) grid.set(x, 0, z, int16_t((x + z) % 3 == 0 ? 1 : 3));
+  grid.set(0, 2, 0, 1);
+  grid.set(2, 1, -1, -2);
+  grid.set(-2, 1, 2, -2);
+  SceneBuilder b;
+  b.add_shape(voxel_desc(grid, {emitting_cube(1, Rgb(2, 1, 0.5f)), VoxelCubeDef{3, {}, Rgb(0)}},
+                         {flame_cell(-2, Rgb(5))}, rotate(20, {1, 0.3f, 0}) * scale({1, 0.7f, 1.2f})));
+  const auto scene = b.flatten();
+  const Light* l = patches_light(*scene);
+  REQUIRE(l != nullptr);
+  const int li = int(l - scene->lights.data());
+  Pcg32 rng(11);
+  int checked = 0, cells = 0;
+  for (const Vec3f p : {Vec3f{0.3f, 4, 0.2f}, Vec3f{-5, 3, 1}, Vec3f{2, 1.5f, 4}}) {
+    for (int i = 0; i < 600; ++i) {
+      LightSample s;
+      if (!sample_light(*scene, *l, p, test::next_2d(rng), &s)) continue;
+      REQUIRE_FALSE(s.delta);
+      Ray ray{p, s.wi, kInfinity};
+      Hit hit;
+      if (!scene->intersect(ray, &hit)) continue;
+      const SurfaceHit sh = scene->surface(ray, hit);
+      const SurfaceEmission* e = patch_emission(*scene, sh);
+      if (!e || std::fabs(hit.t - s.distance) > 1e-3f * s.distance) continue;  // something in front
+      CHECK(e->light == li);
+      CHECK(e->radiance == s.radiance);
+      CHECK(light_pdf(*scene, *l, p, s.wi, &sh, hit.t) == Approx(s.pdf).epsilon(2e-3));
+      ++checked;
+      cells += e->two_sided ? 1 : 0;
+    }
+  }
+  CHECK(checked > 400);
+  CHECK(cells > 20);
+}
+
+TEST_CASE("Voxel emitters render like the same emitters as mesh area lights", "[light][voxel][render]") {
+  // A floor (solid ids 3) with one emitting cube and one flame cell above it, against the same geometry built
+  // from meshes: the cube as an emitting box mesh, the flame as an emitting two-sided quad.
+  VoxelGrid grid;
+  for (int x = -6; x < 6; ++x)
+    for (int z = -6; z < 6; ++z) grid.set(x, 0, z, 3);
+  grid.set(-2, 2, 0, 1);
+  grid.set(2, 1, 0, -2);
+  const Rgb cube_radiance(3, 2, 1), flame_radiance(6);
+  SceneBuilder voxels, meshes;
+  voxels.add_shape(voxel_desc(grid, {emitting_cube(1, cube_radiance), VoxelCubeDef{3, {}, Rgb(0)}},
+                              {flame_cell(-2, flame_radiance)}));
+  VoxelGrid floor_only;
+  for (int x = -6; x < 6; ++x)
+    for (int z = -6; z < 6; ++z) floor_only.set(x, 0, z, 3);
+  meshes.add_shape(voxel_desc(floor_only, {VoxelCubeDef{3, {}, Rgb(0)}}, {}));
+  ShapeDesc box = mesh_shape(make_cube(), translate({-1.5f, 2.5f, 0.5f}) * scale({0.5f, 0.5f, 0.5f}), matte(0.5f));
+  box.emission = cube_radiance;
+  meshes.add_shape(box);
+  meshes.add_shape(mesh_shape(make_cube(), translate({2.5f, 1.2f, 0.5f}) * scale({0.05f, 0.2f, 0.05f}), matte(0.3f)));
+  ShapeDesc flame = mesh_shape(make_polygon({{2.2f, 1.4f, 0.2f}, {2.8f, 1.4f, 0.8f}, {2.8f, 1.9f, 0.8f},
+                                             {2.2f, 1.9f, 0.2f}}),
+                               Transform(), matte(0.2f));
+  flame.emission = flame_radiance;
+  flame.two_sided = true;
+  meshes.add_shape(flame);
+  const CameraDesc cam = test::camera_at({0, 7, -7}, {0, 0.5f, 0}, 50);
+  voxels.set_camera(cam);
+  meshes.set_camera(cam);
+  const auto a = voxels.flatten(), c = meshes.flatten();
+  for (IntegratorKind kind : {IntegratorKind::Path, IntegratorKind::Direct}) {
+    RenderSettings s;
+    s.width = s.height = 48;
+    s.spp = 64;
+    s.max_depth = 4;
+    s.integrator = kind;
+    const Image ia = render(*a, s).image;
+    s.seed = 99;
+    const Image ic = render(*c, s).image;
+    // Tiles of 8x8 pixels: the floor lit by both emitters, and the emitters themselves.
+    int compared = 0;
+    for (int ty = 0; ty < 6; ++ty)
+      for (int tx = 0; tx < 6; ++tx) {
+        const Rgb ma = tile_mean(ia, tx * 8, ty * 8, tx * 8 + 8, ty * 8 + 8);
+        const Rgb mc = tile_mean(ic, tx * 8, ty * 8, tx * 8 + 8, ty * 8 + 8);
+        INFO("integrator " << int(kind) << " tile " << tx << "," << ty << ": " << ma.r << " " << ma.g << " "
+                           << ma.b << " vs " << mc.r << " " << mc.g << " " << mc.b);
+        const float tol = 0.06f * std::max(mc.average(), 0.05f) + 0.01f;
+        CHECK(std::fabs(ma.average() - mc.average()) < tol);
+        ++compared;
+      }
+    CHECK(compared == 36);
+    CHECK(tile_mean(ia, 0, 0, 48, 48).average() > 0.05f);
+  }
+}
+
+TEST_CASE("Voxel emitters: instanced emitting grids and emitting analytic cell shapes are errors", "[light][voxel]") {
+  VoxelGrid grid;
+  grid.set(0, 0, 0, 1);
+  {
+    auto group = std::make_shared<SceneBuilder>();
+    group->add_shape(voxel_desc(grid, {emitting_cube(1, Rgb(1))}, {}));
+    SceneBuilder b;
+    b.add_instance({group, translate({1, 0, 0})});
+    CHECK_THROWS_WITH(b.flatten(), Catch::Contains("cannot be instanced"));
+  }
+  {
+    grid.set(1, 0, 0, -1);
+    auto cell = std::make_shared<SceneBuilder>();
+    ShapeDesc ball = test::sphere_shape(0.3f, translate({0.5f, 0.5f, 0.5f}), matte(0.5f));
+    ball.emission = Rgb(1);
+    cell->add_shape(ball);
+    VoxelCellDef c;
+    c.id = -1;
+    c.shapes = cell;
+    SceneBuilder b;
+    b.add_shape(voxel_desc(grid, {}, {c}));
+    CHECK_THROWS_WITH(b.flatten(), Catch::Contains("only meshes"));
+  }
+}
