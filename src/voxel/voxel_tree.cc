@@ -1,7 +1,6 @@
 #include "voxel/voxel_tree.h"
 
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 
 #include <atomic>
 #include <chrono>
@@ -21,7 +20,6 @@ struct TreeBuilder {
   int cn[3];                                 // root box in chunks per axis
   std::vector<const VoxelChunk*> chunks;     // dense over the root box, x fastest
   std::vector<int32_t> uniform;              // the chunk's single id, or kMixed
-  bool parallel = true;
 
   size_t cidx(int cx, int cy, int cz) const { return (size_t(cz) * size_t(cn[1]) + size_t(cy)) * size_t(cn[0]) + size_t(cx); }
 
@@ -41,13 +39,6 @@ struct TreeBuilder {
     return true;
   }
 
-  static VoxelNode splice(const std::vector<VoxelNode>& local, VoxelNode root, std::vector<VoxelNode>& out) {
-    const uint32_t shift = uint32_t(out.size() / 2);
-    if (out.size() / 2 + local.size() / 2 > VoxelNode::kPairMask) throw Error("voxel grid: more than 2^30 tree nodes");
-    for (VoxelNode n : local) out.push_back(n.is_leaf() ? n : VoxelNode::inner(n.axis(), n.pair() + shift));
-    return root.is_leaf() ? root : VoxelNode::inner(root.axis(), root.pair() + shift);
-  }
-
   VoxelNode node(const int lo_in[3], const int lg_in[3], const VoxelChunk* c, std::vector<VoxelNode>& out) const {
     int lo[3] = {lo_in[0], lo_in[1], lo_in[2]}, lg[3] = {lg_in[0], lg_in[1], lg_in[2]};
     if (!c) {  // a box of whole chunks
@@ -64,17 +55,6 @@ struct TreeBuilder {
     --clg[a];
     int hi_lo[3] = {lo[0], lo[1], lo[2]};
     hi_lo[a] += 1 << clg[a];
-    if (parallel && !c && lg[0] + lg[1] + lg[2] >= 3 * kVoxelChunkBits + 9) {  // boxes of >= 2^21 cells: few big tasks, few splices
-      std::vector<VoxelNode> va, vb;
-      VoxelNode wa, wb;
-      tbb::parallel_invoke([&] { wa = node(lo, clg, nullptr, va); }, [&] { wb = node(hi_lo, clg, nullptr, vb); });
-      if (wa.is_leaf() && wa == wb) return wa;
-      const size_t pair = out.size();
-      out.resize(pair + 2);
-      out[pair] = splice(va, wa, out);
-      out[pair + 1] = splice(vb, wb, out);
-      return VoxelNode::inner(a, uint32_t(pair / 2));
-    }
     const size_t pair = out.size();
     if (pair / 2 > VoxelNode::kPairMask) throw Error("voxel grid: more than 2^30 tree nodes");
     out.resize(pair + 2);
@@ -87,6 +67,127 @@ struct TreeBuilder {
     out[pair] = wa;
     out[pair + 1] = wb;
     return VoxelNode::inner(a, uint32_t(pair / 2));
+  }
+  // Parallel build. The serial recursion lays nodes out in pre-order (a node's children pair, then the left
+  // child's subtree, then the right one's), so a subtree's nodes are contiguous and, relative to their start,
+  // independent of where they land. The top levels are planned serially down to boxes of `cut` log2 cells (or
+  // uniform boxes, which are leaves); those subtrees are built as independent tasks (tbb::parallel_for, dynamic
+  // balancing over many tasks), then the top levels are laid out serially exactly as the serial recursion would
+  // (merging equal leaf children), and the subtrees are copied to their places in parallel with their children
+  // indices shifted. The result is identical to the serial build.
+  struct Top {
+    int kind = 0;  // 0 leaf, 1 task, 2 inner
+    VoxelNode leaf;
+    int axis = 0, task = -1, child[2] = {-1, -1};
+    VoxelNode result;  // after the tasks: the node this box becomes (leaf, task root, or inner before layout)
+  };
+  struct Task {
+    int lo[3], lg[3];
+    std::vector<VoxelNode> nodes;
+    VoxelNode root;
+    size_t dest = 0;
+  };
+
+  int plan(const int lo[3], const int lg[3], int cut, std::vector<Top>& top, std::vector<Task>& tasks) const {
+    const int t = int(top.size());
+    top.emplace_back();
+    int32_t id;
+    if (uniform_chunks(lo, lg, &id)) {
+      top[size_t(t)].leaf = VoxelNode::leaf(int16_t(id));
+      return t;
+    }
+    const bool chunk = lg[0] == kVoxelChunkBits && lg[1] == kVoxelChunkBits && lg[2] == kVoxelChunkBits;
+    if (chunk || lg[0] + lg[1] + lg[2] <= cut) {
+      top[size_t(t)].kind = 1;
+      top[size_t(t)].task = int(tasks.size());
+      Task& k = tasks.emplace_back();
+      for (int a = 0; a < 3; ++a) k.lo[a] = lo[a], k.lg[a] = lg[a];
+      return t;
+    }
+    const int a = voxel_split_axis(lg);
+    int clg[3] = {lg[0], lg[1], lg[2]};
+    --clg[a];
+    int hi_lo[3] = {lo[0], lo[1], lo[2]};
+    hi_lo[a] += 1 << clg[a];
+    const int c0 = plan(lo, clg, cut, top, tasks);
+    const int c1 = plan(hi_lo, clg, cut, top, tasks);
+    Top& n = top[size_t(t)];
+    n.kind = 2;
+    n.axis = a;
+    n.child[0] = c0;
+    n.child[1] = c1;
+    return t;
+  }
+
+  // Bottom-up: what each top box becomes (leaf children that are equal merge, as in node()).
+  static VoxelNode resolve(std::vector<Top>& top, const std::vector<Task>& tasks, int t) {
+    Top& n = top[size_t(t)];
+    if (n.kind == 0) return n.result = n.leaf;
+    if (n.kind == 1) return n.result = tasks[size_t(n.task)].root;
+    const VoxelNode wa = resolve(top, tasks, n.child[0]), wb = resolve(top, tasks, n.child[1]);
+    if (wa.is_leaf() && wa == wb) {
+      n.kind = 0;
+      n.leaf = wa;
+      return n.result = wa;
+    }
+    return n.result = VoxelNode::inner(n.axis, 0);
+  }
+
+  // Pre-order layout of the top levels into `out`, already sized (cursor = where the next node goes, always even).
+  static VoxelNode layout(std::vector<Top>& top, std::vector<Task>& tasks, int t, std::vector<VoxelNode>& out,
+                          size_t& cursor) {
+    Top& n = top[size_t(t)];
+    if (n.kind == 0) return n.leaf;
+    if (n.kind == 1) {
+      Task& k = tasks[size_t(n.task)];
+      if (k.root.is_leaf()) return k.root;
+      k.dest = cursor;
+      cursor += k.nodes.size();
+      return VoxelNode::inner(k.root.axis(), k.root.pair() + uint32_t(k.dest / 2));
+    }
+    const size_t pair = cursor;
+    cursor += 2;
+    const VoxelNode wa = layout(top, tasks, n.child[0], out, cursor);
+    const VoxelNode wb = layout(top, tasks, n.child[1], out, cursor);
+    out[pair] = wa;
+    out[pair + 1] = wb;
+    return VoxelNode::inner(n.axis, uint32_t(pair / 2));
+  }
+
+  VoxelNode build_parallel(const int lg[3], std::vector<VoxelNode>& out) const {
+    const int zero[3] = {0, 0, 0};
+    // Tasks of 1/1024 of the root box (at least a chunk): enough for dynamic balancing on sparse worlds.
+    const int cut = std::max(3 * kVoxelChunkBits, lg[0] + lg[1] + lg[2] - 10);
+    std::vector<Top> top;
+    std::vector<Task> tasks;
+    plan(zero, lg, cut, top, tasks);
+    tbb::parallel_for(size_t(0), tasks.size(), [&](size_t i) {
+      Task& k = tasks[i];
+      k.root = node(k.lo, k.lg, nullptr, k.nodes);
+    }, tbb::simple_partitioner());
+    resolve(top, tasks, 0);
+    // The final size, so `out` is allocated once: a pair per inner top box (merged ones are leaves now), and the
+    // nodes of every task that is not a leaf.
+    size_t total = out.size();
+    for (const Top& n : top) total += n.kind == 2 ? 2 : 0;
+    for (const Task& k : tasks) total += k.root.is_leaf() ? 0 : k.nodes.size();
+    if (total / 2 > VoxelNode::kPairMask) throw Error("voxel grid: more than 2^30 tree nodes");
+    size_t cursor = out.size();
+    out.resize(total);
+    const VoxelNode root = layout(top, tasks, 0, out, cursor);
+    if (cursor != total) throw Error("voxel grid: internal error in the parallel build layout");
+    tbb::parallel_for(size_t(0), tasks.size(), [&](size_t i) {
+      Task& k = tasks[i];
+      if (k.root.is_leaf()) return;
+      const uint32_t shift = uint32_t(k.dest / 2);
+      VoxelNode* dst = out.data() + k.dest;
+      for (size_t j = 0; j < k.nodes.size(); ++j) {
+        const VoxelNode n = k.nodes[j];
+        dst[j] = n.is_leaf() ? n : VoxelNode::inner(n.axis(), n.pair() + shift);
+      }
+      std::vector<VoxelNode>().swap(k.nodes);
+    }, tbb::simple_partitioner());
+    return root;
   }
 };
 
@@ -104,7 +205,6 @@ VoxelTree VoxelTree::build(const VoxelGrid& grid, bool parallel) {
   int lo[3], hi[3];
   grid.chunk_bounds(lo, hi);
   TreeBuilder b;
-  b.parallel = parallel;
   size_t total = 1;
   for (int a = 0; a < 3; ++a) {
     tree.origin_[a] = lo[a];
@@ -137,7 +237,10 @@ VoxelTree VoxelTree::build(const VoxelGrid& grid, bool parallel) {
   });
   const int zero[3] = {0, 0, 0};
   tree.nodes_.assign(2, VoxelNode{});
-  tree.nodes_[0] = b.node(zero, tree.lg_, nullptr, tree.nodes_);
+  // Both append to nodes_ (which may reallocate): the root goes to nodes_[0] only afterwards.
+  const VoxelNode root =
+      parallel ? b.build_parallel(tree.lg_, tree.nodes_) : b.node(zero, tree.lg_, nullptr, tree.nodes_);
+  tree.nodes_[0] = root;
   tree.nodes_.shrink_to_fit();
   VoxelBuildStats& s = tree.stats_;
   s.voxels = voxels;
