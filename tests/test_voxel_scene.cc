@@ -203,3 +203,46 @@ TEST_CASE("voxel grid transformed and instanced equals the untransformed grid's 
   CHECK(hits > n / 2);
   CHECK(mismatches <= n / 1000);  // float differences on edges only
 }
+
+TEST_CASE("voxel grid: coherent rays (packets) and single rays give the same scene hits and occlusion", "[voxel]") {
+  // Camera rays in 4x4 pixel blocks over a rotated grid with cell shapes, plus a mesh in front clipping t_max.
+  SceneBuilder b;
+  b.add_shape(voxel_desc(test_world(), rotate(10, {0, 1, 0})));
+  ShapeDesc panel;
+  panel.mesh = std::make_shared<TriangleMesh>(make_polygon({{4, 4, 4}, {4, 9, 4}, {9, 9, 4}, {9, 4, 4}}));
+  panel.material = matte(Rgb(0.5f));
+  b.add_shape(panel);
+  const auto scene = b.flatten();
+  const int w = 64, h = 64;
+  std::vector<float> o[3], d[3], tmax;
+  for (int by = 0; by < h; by += 4)
+    for (int bx = 0; bx < w; bx += 4)
+      for (int y = by; y < by + 4; ++y)
+        for (int x = bx; x < bx + 4; ++x) {
+          const Vec3f eye{-8, 18, -10};
+          const Vec3f dir = normalize(Vec3f{10, -10, 10} + Vec3f{float(x - w / 2), float(h / 2 - y), 0} * 0.25f);
+          for (int a = 0; a < 3; ++a) {
+            o[a].push_back(eye[a]);
+            d[a].push_back(dir[a]);
+          }
+          tmax.push_back((x + y) % 7 == 0 ? 20.0f : kInfinity);  // some rays end early
+        }
+  const size_t n = tmax.size();
+  const RaySoA rays{o[0].data(), o[1].data(), o[2].data(), d[0].data(), d[1].data(), d[2].data(), tmax.data()};
+  std::vector<Hit> coherent(n), single(n);
+  scene->intersect(rays, n, coherent.data(), true);
+  scene->intersect(rays, n, single.data(), false);
+  int voxel_hits = 0, mismatches = 0;
+  for (size_t i = 0; i < n; ++i) {
+    voxel_hits += is_voxel_prim(single[i].prim);
+    if (coherent[i].prim != single[i].prim || coherent[i].t != single[i].t || coherent[i].b1 != single[i].b1 ||
+        coherent[i].b2 != single[i].b2)
+      ++mismatches;
+  }
+  CHECK(mismatches == 0);
+  CHECK(voxel_hits > int(n) / 3);
+  std::vector<uint8_t> occ_coherent(n), occ_single(n);
+  scene->occluded(rays, n, occ_coherent.data(), true);
+  scene->occluded(rays, n, occ_single.data(), false);
+  CHECK(occ_coherent == occ_single);
+}

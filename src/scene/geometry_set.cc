@@ -103,14 +103,23 @@ void GeometrySet::intersect(const RaySoA& rays, size_t count, Hit* hits, bool co
     std::fill(hits, hits + count, Hit{});
   }
   if (!quadrics_->empty()) intersect_quadrics(rays, count, hits);
-  if (grid_count() > 0) intersect_grids(rays, count, hits);
+  if (grid_count() > 0) intersect_grids(rays, count, hits, coherent);
 }
 
-// Voxel grids, one ray at a time (scalar kd-tree traversal), after the triangles and quadrics with t_max
-// clipped to their hit.
-void GeometrySet::intersect_grids(const RaySoA& rays, size_t count, Hit* hits) const {
+// Voxel grids after the triangles and quadrics, with t_max clipped to their hit: coherent rays in packets
+// (simd/voxel_packet.h), others one at a time (voxel/voxel_traverse.h).
+void GeometrySet::intersect_grids(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
+  auto ray = [&](size_t i) {
+    return Ray{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
+  };
+  if (coherent && count >= 16) {  // packets of 16 (camera rays come in tiles)
+    std::vector<Ray> aos(count);
+    for (size_t i = 0; i < count; ++i) aos[i] = ray(i);
+    for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].intersect_coherent(aos.data(), count, g, hits);
+    return;
+  }
   for (size_t i = 0; i < count; ++i) {
-    const Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
+    const Ray r = ray(i);
     for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].intersect(r, g, &hits[i]);
   }
 }
@@ -142,6 +151,7 @@ void GeometrySet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, b
     std::fill(blocked, blocked + count, uint8_t(0));
   }
   if (quadrics_->empty() && grid_count() == 0) return;
+  const bool grid_packets = coherent && count >= 16 && grid_count() > 0;
   for (size_t i = 0; i < count; ++i) {
     if (blocked[i]) continue;
     const Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
@@ -151,7 +161,14 @@ void GeometrySet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, b
         Vec2f uv;
         return torte::intersect((*quadrics_)[q], ray, &t, &uv);
       });
-    for (uint32_t g = 0; g < grid_count() && !blocked[i]; ++g) blocked[i] = (*grids_)[g].occluded(r);
+    if (!grid_packets)
+      for (uint32_t g = 0; g < grid_count() && !blocked[i]; ++g) blocked[i] = (*grids_)[g].occluded(r);
+  }
+  if (grid_packets) {
+    std::vector<Ray> aos(count);
+    for (size_t i = 0; i < count; ++i)  // rays already blocked: nothing to search
+      aos[i] = {{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, blocked[i] ? 0.0f : rays.t_max[i]};
+    for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].occluded_coherent(aos.data(), count, blocked);
   }
 }
 

@@ -64,7 +64,7 @@ class GeometrySet {
 
  private:
   void intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const;
-  void intersect_grids(const RaySoA& rays, size_t count, Hit* hits) const;
+  void intersect_grids(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const;
   const std::vector<TriangleMesh>* meshes_ = nullptr;
   const std::vector<Quadric>* quadrics_ = nullptr;
   const std::vector<VoxelGridAccel>* grids_ = nullptr;

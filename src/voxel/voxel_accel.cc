@@ -1,8 +1,11 @@
 #include "voxel/voxel_accel.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "scene/geometry_set.h"
+#include "voxel_packet.h"
 
 namespace torte {
 
@@ -58,6 +61,47 @@ bool VoxelGridAccel::intersect(const Ray& ray, uint32_t index, Hit* hit) const {
 
 bool VoxelGridAccel::occluded(const Ray& ray) const {
   return voxel_occluded(*tree, to_set.apply_inverse(ray), CellHandler{*this});
+}
+
+namespace {
+constexpr int kVoxelPacket = 16;
+}
+
+void VoxelGridAccel::intersect_coherent(const Ray* set_rays, size_t count, uint32_t index, Hit* hits) const {
+  std::vector<Ray> rays(count);
+  for (size_t i = 0; i < count; ++i) {
+    rays[i] = to_set.apply_inverse(set_rays[i]);
+    rays[i].t_max = std::max(0.0f, std::min(set_rays[i].t_max, hits[i].t));
+  }
+  std::vector<VoxelHit> vh(count);
+  std::vector<uint8_t> found(count);
+  const CellHandler cells{*this};
+  voxel_intersect_packets(*tree, rays.data(), count, vh.data(), found.data(), kVoxelPacket,
+                          voxel_cell_callbacks(cells));
+  for (size_t i = 0; i < count; ++i) {
+    // As intersect(): rays with nothing left to search keep their hit.
+    if (!found[i] || !(rays[i].t_max > 0) || !(vh[i].t < hits[i].t)) continue;
+    Hit& h = hits[i];
+    h.t = vh[i].t;
+    if (vh[i].face >= 0) {
+      h.prim = voxel_prim(index, false, vh[i].face, vh[i].id);
+      h.b1 = vh[i].u;
+      h.b2 = vh[i].v;
+    } else {
+      h.prim = voxel_prim(index, true, 0, vh[i].id);
+      h.b1 = vh[i].cell.b1;
+      h.b2 = vh[i].cell.b2;
+    }
+  }
+}
+
+void VoxelGridAccel::occluded_coherent(const Ray* set_rays, size_t count, uint8_t* blocked) const {
+  std::vector<Ray> rays(count);
+  for (size_t i = 0; i < count; ++i) rays[i] = to_set.apply_inverse(set_rays[i]);
+  std::vector<uint8_t> hit(count);
+  const CellHandler cells{*this};
+  voxel_occluded_packets(*tree, rays.data(), count, hit.data(), kVoxelPacket, voxel_cell_callbacks(cells));
+  for (size_t i = 0; i < count; ++i) blocked[i] = blocked[i] || hit[i];
 }
 
 SurfaceHit VoxelGridAccel::surface(const Hit& hit, const Ray& ray) const {
