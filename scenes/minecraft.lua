@@ -5,6 +5,7 @@
 --   torte scenes/minecraft.lua [world=<folder with r.X.Z.mca, or a world folder with region/>]
 --                              [box=x0,y0,z0,x1,y1,z1] [camera=ex,ey,ez,lx,ly,lz] [fov=40]
 --                              [sun_elevation=35] [sun_azimuth=-50] [lights=64] [skip_bad_chunks=false] [sea=true]
+--                              [sea_radius=2e7]
 --                              [width=960] [height=540] [spp=16] [max_depth=6] [integrator=path|direct]
 --                              [output=out/minecraft.exr]
 --
@@ -12,7 +13,9 @@
 --   world=prismarine-1.16 is looked up in that folder too. Every world there has framing defaults below.
 -- box: block coordinates, x0 <= x < x1 (etc.); only those blocks are loaded. camera: eye and look-at in world
 --   block coordinates; by default the camera frames the loaded terrain from the south-east, above the surface.
--- sea: water at sea level (a surface at y = 62.875) around the loaded blocks, out to the horizon.
+-- sea: water at sea level (a surface at y = 62.875) around the loaded blocks, out to sea_radius blocks: far enough
+--   that no ray slips between its edge and the horizon (below which the sky is black; see docs/minecraft.md).
+-- Blocks take their biome's tint (grass, leaves, vines, water) and fences, walls and panes join their neighbours.
 -- lights: emitting blocks (torches, lanterns, glowstone, lava, ...) become up to this many point lights.
 -- When the world folder is missing the scene renders the empty sky (with a notice unless --quiet).
 local torte = require "torte"
@@ -24,7 +27,7 @@ local data_dir = script_dir .. "/../../shared/data/minecraft"
 
 local opt = torte.options{
   world = data_dir .. "/bluenbt-1.20.1-paper", box = "", camera = "", fov = 40, sun_elevation = 35,
-  sun_azimuth = -50, lights = 64, skip_bad_chunks = false, sea = true,
+  sun_azimuth = -50, lights = 64, skip_bad_chunks = false, sea = true, sea_radius = 2e7,
   width = 960, height = 540, spp = 16, max_depth = 6, integrator = "path", output = "out/minecraft.exr",
 }
 
@@ -83,7 +86,7 @@ if have_world then
   }
   -- Only the top of each body of water is kept (one refraction per ray instead of one per block).
   local t_water = torte.clock()
-  local deep_water = world.water_surfaces(sections, reg:state("minecraft:water"))
+  local deep_water, water_surface = world.water_surfaces(sections, reg:ids_of("minecraft:water"))
   t_water = torte.clock() - t_water
   for key, ids in pairs(sections) do
     local cx, cy, cz = key:match("^(%-?%d+),(%-?%d+),(%-?%d+)$")
@@ -115,7 +118,12 @@ if have_world then
     local x0, z0, x1, z1 = b.lo[1], b.lo[3], b.hi[1], b.hi[3]
     if box then x0, z0, x1, z1 = math.max(x0, box[1]), math.max(z0, box[3]), math.min(x1, box[4]), math.min(z1, box[6]) end
     local y, R = 62.875, 200000
-    local water = blocks.make_material(blocks.definition("water"), blocks.definition("water").color)
+    -- Tinted like the most common water surface of the loaded blocks (their biome's water colour).
+    local wd, best = blocks.definition("water"), 0
+    for id, n in pairs(water_surface) do
+      if n > best and reg:tint(id) then wd, best = blocks.tinted_definition(blocks.definition("water"), reg:tint(id)), n end
+    end
+    local water = blocks.make_material(wd, wd.color)
     local function quad(ax, az, bx, bz)
       scene:add(torte.shape.polygon{points = {{ax, y, az}, {ax, y, bz}, {bx, y, bz}, {bx, y, az}}, material = water})
     end
@@ -123,6 +131,16 @@ if have_world then
     quad(-R, z1, R, R)
     quad(-R, z0, x0, z1)
     quad(x1, z0, R, z1)
+    -- An outer ring out to R2: rays that pass beyond R still dip below the horizon, where the sky is black; seen
+    -- from 100-200 blocks up, 200 km leaves a gap of about half a pixel at the horizon (a dark line). At R2 the gap
+    -- is far below a pixel. (Separate quads: the near sea keeps the precision of the 200 km quads.)
+    local R2 = opt.sea_radius
+    if R2 > R then
+      quad(-R2, -R2, R2, -R)
+      quad(-R2, R, R2, R2)
+      quad(-R2, -R, -R, R)
+      quad(R, -R, R2, R)
+    end
   end
 
   -- Emitting blocks -> point lights (a regular subset when there are more than `lights`).

@@ -7,10 +7,16 @@
 --   local id2 = reg:legacy(44, 8)                                 -- pre-1.13 numeric id + data nibble
 --   reg:define(grid)      -- grid:define{...} for every id handed out (materials built on first use)
 --   reg.unknown           -- {["minecraft:foo"] = number of blocks} drawn with the fallback (magenta) look
+--   reg:tinted(id, "swamp")   -- the biome variant of a tinted block (grass, leaves, vines, water): a new id
+--   reg:tint(id)              -- its tint class (nil: untinted); reg.tint_kind[id] = "grass" | "foliage" | "water"
+--   reg:connected(id, {north = true, east = false, ...})   -- a fence, wall or pane with those connections
+--   reg.family[id], reg:solid(id)   -- what fences, walls and panes join (minecraft.world.connect_section)
+--   reg:ids_of("minecraft:water")   -- every id of a block name, as a set
 --
 -- Looks are procedural (noise-tinted colours, no game assets). Colours below are sRGB-ish as one would pick
 -- them; they are linearised when materials are made.
 local torte = require "torte"
+local biomes = require "minecraft.biomes"
 
 local M = {}
 
@@ -53,7 +59,10 @@ local GRASS = {0.45, 0.7, 0.3}
 -- A definition: color (all faces) or top/side/bottom colours; `mat` picks a material kind (matte by default;
 -- "glass", "water", "ice", "metal", "plastic", "leaves"); `emit` makes an emitter (radiance, linear);
 -- `shape` makes a cell shape instead of a cube ("slab", "stairs", "cross", "flower", "torch", "layer", "pane",
--- "fence", "carpet", "rail"); `invisible` = not drawn.
+-- "fence", "wall", "gate", "door", "carpet", "scaffold"); `invisible` = not drawn. `tint` = "grass", "foliage" or
+-- "water": the colour (grass_block: its top) follows the biome (minecraft.biomes; the colours here are plains).
+-- `connect` = the family a fence, wall or pane connects to (besides solid cubes): "wood_fence", "nether_fence",
+-- "pane", "wall".
 local D = {}
 M.DEFS = D
 local function def(names, t)
@@ -81,7 +90,7 @@ def("dirt coarse_dirt rooted_dirt", {color = DIRT})
 def("mud", {color = {0.24, 0.22, 0.24}})
 def("farmland", {top = {0.32, 0.2, 0.1}, side = DIRT, bottom = DIRT})
 def("dirt_path grass_path", {top = {0.58, 0.49, 0.27}, side = DIRT, bottom = DIRT})
-def("grass_block", {top = GRASS, side = {0.5, 0.47, 0.3}, bottom = DIRT})
+def("grass_block", {top = GRASS, side = {0.5, 0.47, 0.3}, bottom = DIRT, tint = "grass"})
 def("podzol", {top = {0.36, 0.25, 0.1}, side = DIRT, bottom = DIRT})
 def("mycelium", {top = {0.44, 0.37, 0.41}, side = DIRT, bottom = DIRT})
 def("snowy_grass_block", {top = {0.95, 0.97, 0.98}, side = {0.75, 0.72, 0.68}, bottom = DIRT})
@@ -118,14 +127,15 @@ def("crafting_table", {top = {0.55, 0.38, 0.22}, side = {0.48, 0.34, 0.2}, botto
 def("furnace dispenser dropper observer", {color = {0.45, 0.45, 0.45}})
 def("note_block jukebox", {color = {0.45, 0.3, 0.22}})
 def("glass tinted_glass", {color = {0.9, 0.95, 0.95}, mat = "glass"})
-def("glass_pane iron_bars", {color = {0.9, 0.95, 0.95}, mat = "glass", shape = "pane"})
+def("glass_pane", {color = {0.9, 0.95, 0.95}, mat = "glass", shape = "pane", connect = "pane"})
+def("iron_bars", {color = {0.6, 0.6, 0.62}, mat = "metal", roughness = 0.5, shape = "pane", connect = "pane"})
 def("ice frosted_ice", {color = {0.6, 0.75, 0.98}, mat = "ice"})
 def("packed_ice blue_ice", {color = {0.55, 0.7, 0.95}, mat = "plastic"})
 def("snow_block powder_snow", {color = {0.96, 0.98, 0.98}, noise = 0.1})
 def("snow", {color = {0.96, 0.98, 0.98}, noise = 0.1, shape = "layer"})
 -- Water: a cell shape holding only the surface (a dielectric quad 14/16 up the cell). world.water_surfaces()
 -- empties water cells under other water, so a ray crosses one interface instead of one per block.
-def("water bubble_column", {color = {0.75, 0.85, 0.95}, mat = "water", shape = "water"})
+def("water bubble_column", {color = {0.75, 0.85, 0.95}, mat = "water", shape = "water", tint = "water"})
 def("lava", {color = {0.9, 0.35, 0.05}, emit = {4.0, 1.2, 0.15}})
 def("magma_block", {color = {0.55, 0.2, 0.08}, emit = {0.6, 0.15, 0.02}})
 def("glowstone", {color = {0.9, 0.75, 0.45}, emit = {6, 4.5, 2.5}})
@@ -146,7 +156,7 @@ def("cactus", {top = {0.35, 0.55, 0.2}, side = {0.25, 0.5, 0.15}, bottom = {0.35
 def("sponge wet_sponge", {color = {0.8, 0.78, 0.3}})
 def("netherrack", {color = {0.43, 0.18, 0.18}})
 def("soul_sand soul_soil", {color = {0.33, 0.25, 0.2}})
-def("nether_bricks red_nether_bricks nether_brick_fence", {color = {0.22, 0.11, 0.13}})
+def("nether_bricks red_nether_bricks", {color = {0.22, 0.11, 0.13}})
 def("end_stone end_stone_bricks", {color = {0.86, 0.87, 0.63}})
 def("purpur_block purpur_pillar", {color = {0.66, 0.49, 0.66}})
 def("quartz_block smooth_quartz chiseled_quartz_block quartz_pillar quartz_bricks", {color = {0.92, 0.9, 0.86},
@@ -172,12 +182,13 @@ def("blackstone polished_blackstone polished_blackstone_bricks basalt polished_b
     {color = {0.17, 0.15, 0.18}})
 def("beacon", {color = {0.5, 0.85, 0.85}, emit = {4, 6, 6}})
 -- Plants: small primitives.
-def("grass short_grass fern tall_grass large_fern seagrass tall_seagrass kelp kelp_plant", {color = {0.35, 0.6, 0.22},
-                                                                                        shape = "cross"})
+def("grass short_grass fern tall_grass large_fern", {color = {0.35, 0.6, 0.22}, shape = "cross", tint = "grass"})
+def("seagrass tall_seagrass kelp kelp_plant", {color = {0.35, 0.6, 0.22}, shape = "cross"})
 def("dead_bush", {color = {0.55, 0.4, 0.2}, shape = "cross"})
-def("sugar_cane reeds", {color = {0.5, 0.7, 0.35}, shape = "cross"})
+def("sugar_cane reeds", {color = {0.5, 0.7, 0.35}, shape = "cross", tint = "grass"})
 def("wheat carrots potatoes beetroots", {color = {0.55, 0.65, 0.2}, shape = "cross"})
-def("vine glow_lichen", {color = {0.25, 0.5, 0.15}, shape = "carpet"})
+def("vine", {color = {0.25, 0.5, 0.15}, shape = "carpet", tint = "foliage"})
+def("glow_lichen", {color = {0.25, 0.5, 0.15}, shape = "carpet"})
 def("lily_pad", {color = {0.2, 0.5, 0.15}, shape = "carpet"})
 def("cobweb", {color = {0.9, 0.9, 0.9}, shape = "cross"})
 def("dandelion sunflower", {color = {0.95, 0.85, 0.1}, shape = "flower"})
@@ -229,7 +240,7 @@ def("flower_pot", {color = {0.47, 0.25, 0.17}, shape = "flower"})
 def("skeleton_skull skeleton_wall_skull wither_skeleton_skull zombie_head player_head creeper_head dragon_head",
     {color = {0.8, 0.8, 0.75}, shape = "flower"})
 def("conduit", {color = {0.6, 0.55, 0.4}, shape = "flower", emit = {2, 3, 3}})
-def("scaffolding", {color = {0.75, 0.65, 0.4}, shape = "fence"})
+def("scaffolding", {color = {0.75, 0.65, 0.4}, shape = "scaffold"})
 def("sea_pickle", {color = {0.45, 0.55, 0.2}, shape = "flower", emit = {0.5, 0.8, 0.6}})
 def("turtle_egg", {color = {0.9, 0.9, 0.8}, shape = "flower"})
 def("blast_furnace smoker", {color = {0.4, 0.4, 0.42}})
@@ -265,7 +276,10 @@ local function family(n)
   wood = n:match("^(.-)_wood$") or n:match("^(.-)_hyphae$")
   if wood then return {color = BARK[wood] or BARK.oak} end
   wood = n:match("^(.-)_leaves$")
-  if wood then return {color = LEAVES[wood] or LEAVES.oak, mat = "leaves"} end
+  if wood then  -- spruce, birch, cherry and azalea leaves have fixed colours; the others follow the biome
+    local fixed = wood == "spruce" or wood == "birch" or wood == "cherry" or wood:find("azalea")
+    return {color = LEAVES[wood] or LEAVES.oak, mat = "leaves", tint = not fixed and "foliage" or nil}
+  end
   wood = n:match("^(.-)_sapling$")
   if wood then return {color = LEAVES[wood] or LEAVES.oak, shape = "cross"} end
   local dye = n:match("^(.-)_wool$")
@@ -282,7 +296,7 @@ local function family(n)
     return {color = {0.55 * c[1] + 0.25, 0.55 * c[2] + 0.17, 0.55 * c[3] + 0.13}}
   end
   dye = n:match("^(.-)_stained_glass_pane$")
-  if dye and DYES[dye] then return {color = DYES[dye], mat = "glass", shape = "pane"} end
+  if dye and DYES[dye] then return {color = DYES[dye], mat = "glass", shape = "pane", connect = "pane"} end
   dye = n:match("^(.-)_stained_glass$")
   if dye and DYES[dye] then return {color = DYES[dye], mat = "glass"} end
   dye = n:match("^(.-)_shulker_box$")
@@ -328,11 +342,14 @@ local function family(n)
               or (base == "purpur" and D.purpur_block) or (base == "iron" and D.iron_block)
               or family(base)
     if b then
-      local shape = ({slab = "slab", stairs = "stairs", fence = "fence", fence_gate = "fence", wall = "fence",
-                      pressure_plate = "carpet", button = "carpet", trapdoor = "carpet", door = "pane",
+      local shape = ({slab = "slab", stairs = "stairs", fence = "fence", fence_gate = "gate", wall = "wall",
+                      pressure_plate = "carpet", button = "carpet", trapdoor = "carpet", door = "door",
                       sign = "torch", wall_sign = "carpet"})[kind]
+      local connect = (kind == "wall" and "wall") or (kind == "fence" and (base == "nether_brick" and "nether_fence"
+                                                                           or "wood_fence")) or nil
       return {color = b.color or b.side, top = b.top, side = b.side, bottom = b.bottom, mat = b.mat,
-              metal = b.metal, roughness = b.roughness, shape = shape, noise = b.noise}
+              metal = b.metal, roughness = b.roughness, shape = shape, noise = b.noise, connect = connect,
+              gate = kind == "fence_gate" or nil}
     end
   end
   return nil
@@ -520,13 +537,60 @@ local function make_shape(d, props, m)
     box(g, {0, 0, 0}, {1, h, 1}, m)
   elseif s == "carpet" then
     box(g, {0, 0, 0}, {1, 0.0625, 1}, m)
-  elseif s == "pane" then
-    box(g, {0.4375, 0, 0}, {0.5625, 1, 1}, m)
-    box(g, {0, 0, 0.4375}, {1, 1, 0.5625}, m)
-  elseif s == "fence" then
+  elseif s == "pane" or s == "fence" or s == "wall" then
+    -- Connecting blocks: a post and an arm towards each connected side (north -z, south +z, west -x, east +x).
+    -- Without connection properties (a caller that gives none) every side is connected.
+    local c = M.connections(props)
+    if s == "pane" then
+      local a, b = 7 / 16, 9 / 16
+      box(g, {a, 0, a}, {b, 1, b}, m)
+      if c.north then box(g, {a, 0, 0}, {b, 1, a}, m) end
+      if c.south then box(g, {a, 0, b}, {b, 1, 1}, m) end
+      if c.west then box(g, {0, 0, a}, {a, 1, b}, m) end
+      if c.east then box(g, {b, 0, a}, {1, 1, b}, m) end
+    elseif s == "fence" then
+      local p0, p1, a, b = 6 / 16, 10 / 16, 7 / 16, 9 / 16
+      box(g, {p0, 0, p0}, {p1, 1, p1}, m)
+      for _, y in ipairs({{6 / 16, 9 / 16}, {12 / 16, 15 / 16}}) do
+        if c.north then box(g, {a, y[1], 0}, {b, y[2], p0}, m) end
+        if c.south then box(g, {a, y[1], p1}, {b, y[2], 1}, m) end
+        if c.west then box(g, {0, y[1], a}, {p0, y[2], b}, m) end
+        if c.east then box(g, {p1, y[1], a}, {1, y[2], b}, m) end
+      end
+    else  -- wall: a post (when `up`) and arms 14/16 high ("low") or full height ("tall")
+      local p0, p1, a, b = 4 / 16, 12 / 16, 5 / 16, 11 / 16
+      if c.up then box(g, {p0, 0, p0}, {p1, 1, p1}, m) end
+      local function h(side) return c[side] == "tall" and 1 or 14 / 16 end
+      local lo, hi = c.up and p0 or a, c.up and p1 or b  -- without a post the arms meet in the middle
+      if c.north then box(g, {a, 0, 0}, {b, h("north"), c.south and 1 or hi}, m) end
+      if c.south then box(g, {a, 0, c.north and 0 or lo}, {b, h("south"), 1}, m) end
+      if c.west then box(g, {0, 0, a}, {c.east and 1 or hi, h("west"), b}, m) end
+      if c.east then box(g, {c.west and 0 or lo, 0, a}, {1, h("east"), b}, m) end
+      if not (c.up or c.north or c.south or c.west or c.east) then box(g, {p0, 0, p0}, {p1, 1, p1}, m) end
+    end
+  elseif s == "scaffold" then
     box(g, {0.375, 0, 0.375}, {0.625, 1, 0.625}, m)
     box(g, {0, 0.6, 0.4375}, {1, 0.8, 0.5625}, m)
     box(g, {0.4375, 0.6, 0}, {0.5625, 0.8, 1}, m)
+  elseif s == "gate" then  -- a closed fence gate across its facing direction
+    local f = FACING[props.facing or "north"] or FACING.north
+    for _, y in ipairs({{6 / 16, 9 / 16}, {12 / 16, 15 / 16}}) do
+      if f[1] == 0 then box(g, {0, y[1], 7 / 16}, {1, y[2], 9 / 16}, m) else box(g, {7 / 16, y[1], 0}, {9 / 16, y[2], 1}, m) end
+    end
+    if f[1] == 0 then
+      box(g, {0, 5 / 16, 7 / 16}, {2 / 16, 1, 9 / 16}, m)
+      box(g, {14 / 16, 5 / 16, 7 / 16}, {1, 1, 9 / 16}, m)
+    else
+      box(g, {7 / 16, 5 / 16, 0}, {9 / 16, 1, 2 / 16}, m)
+      box(g, {7 / 16, 5 / 16, 14 / 16}, {9 / 16, 1, 1}, m)
+    end
+  elseif s == "door" then  -- a closed door: a 3/16 panel on the side it faces away from
+    local f = FACING[props.facing or "north"] or FACING.north
+    local t = 3 / 16
+    if f[2] < 0 then box(g, {0, 0, 1 - t}, {1, 1, 1}, m)
+    elseif f[2] > 0 then box(g, {0, 0, 0}, {1, 1, t}, m)
+    elseif f[1] < 0 then box(g, {1 - t, 0, 0}, {1, 1, 1}, m)
+    else box(g, {0, 0, 0}, {t, 1, 1}, m) end
   elseif s == "torch" then
     box(g, {0.4375, 0, 0.4375}, {0.5625, 0.5, 0.5625}, torte.material.matte{color = linear({0.4, 0.3, 0.18})})
     box(g, {0.42, 0.5, 0.42}, {0.58, 0.66, 0.58}, m)
@@ -544,12 +608,66 @@ local function make_shape(d, props, m)
 end
 M.make_shape = make_shape
 
+-- ---- biome tints ---------------------------------------------------------------------------------------------
+-- A colour as it looks in a biome class: scaled per channel by the class's grass/foliage/water colour over that of
+-- plains (the colours of the definitions are their plains look). Water is tinted half as strongly (square root):
+-- its colour is a transmittance, applied once per metre of path.
+function M.tint_color(c, kind, class)
+  local t, r = biomes.TINTS[class], biomes.TINTS[biomes.REFERENCE]
+  if not t or not c then return c end
+  local out = {}
+  for k = 1, 3 do
+    local f = t[kind][k] / r[kind][k]
+    if kind == "water" then f = math.sqrt(f) end
+    out[k] = math.min(1, c[k] * f)
+  end
+  return out
+end
+
+-- A copy of a tinted definition with its colours for a biome class (grass_block: only the top).
+function M.tinted_definition(d, class)
+  local out = {}
+  for k, v in pairs(d) do out[k] = v end
+  if d.top then
+    out.top = M.tint_color(d.top, d.tint, class)
+  else
+    out.color = M.tint_color(d.color, d.tint, class)
+  end
+  return out
+end
+
 -- ---- the registry ---------------------------------------------------------------------------------------------
 local Registry = {}
 Registry.__index = Registry
 
 -- Properties that change a block's shape (everything else shares one voxel id).
-local SHAPE_PROPS = {slab = {"type"}, slab_low = {}, stairs = {"facing", "half"}, layer = {"layers"}}
+local SHAPE_PROPS = {slab = {"type"}, slab_low = {}, stairs = {"facing", "half"}, layer = {"layers"},
+                     pane = {"north", "east", "south", "west"}, fence = {"north", "east", "south", "west"},
+                     wall = {"north", "east", "south", "west", "up"}, gate = {"facing"}, door = {"facing"}}
+local SIDES = {"north", "east", "south", "west"}
+
+-- The connections of a fence, wall or pane from its block-state properties: {north = false | true | "low" |
+-- "tall", ..., up = bool}. 1.13+ states say "true"/"false" (walls from 1.16: "none"/"low"/"tall"). No properties
+-- at all (nil) means connected on every side.
+function M.connections(props)
+  local c = {}
+  local any = false
+  for _, k in ipairs(SIDES) do
+    local v = props and props[k]
+    if v ~= nil then any = true end
+    if v == "true" or v == true or v == "low" then c[k] = "low"
+    elseif v == "tall" then c[k] = "tall"
+    else c[k] = false end
+  end
+  if not any then
+    for _, k in ipairs(SIDES) do c[k] = "low" end
+  end
+  local up = props and props.up
+  if up == nil then c.up = not any or not ((c.north and c.south and not c.east and not c.west)
+                                          or (c.east and c.west and not c.north and not c.south))
+  else c.up = up == "true" or up == true end
+  return c
+end
 
 function M.registry()
   return setmetatable({
@@ -559,6 +677,10 @@ function M.registry()
     unknown = {},      -- name -> blocks drawn with the fallback look
     unknown_blocks = 0,
     legacy_cache = {},
+    tint_kind = {},    -- id -> "grass" | "foliage" | "water" for blocks whose colour follows the biome
+    tint_cache = {},   -- id -> {class -> tinted variant id}
+    family = {},       -- id -> connection family of fences, walls, panes ("gate" for fence gates)
+    solid_cache = {},
   }, Registry)
 end
 
@@ -568,10 +690,20 @@ function Registry:state(name, props)
   local d = M.definition(name)
   local key = name
   if d and d.shape and props then
-    local keys = SHAPE_PROPS[d.shape]
-    if keys then
-      for _, k in ipairs(keys) do
-        if props[k] ~= nil then key = key .. "," .. k .. "=" .. tostring(props[k]) end
+    if d.connect then  -- one key per connection shape: "true" and "low" (walls before/after 1.16) are the same
+      if props.north ~= nil or props.east ~= nil or props.south ~= nil or props.west ~= nil then
+        local c = M.connections(props)
+        local code = ""
+        for _, k in ipairs(SIDES) do code = code .. (c[k] == "tall" and "2" or c[k] and "1" or "0") end
+        if d.shape == "wall" then code = code .. (c.up and "u" or "") end
+        key = key .. ",c=" .. code
+      end
+    else
+      local keys = SHAPE_PROPS[d.shape]
+      if keys then
+        for _, k in ipairs(keys) do
+          if props[k] ~= nil then key = key .. "," .. k .. "=" .. tostring(props[k]) end
+        end
       end
     end
   end
@@ -581,7 +713,22 @@ function Registry:state(name, props)
   if id then return id end
   if d and d.invisible then
     id = 0
-  elseif d and d.shape then
+  else
+    id = self:new_id(d and d.shape)
+  end
+  self.by_key[key] = id
+  if id ~= 0 then
+    self.entries[id] = {key = key, name = name, def = d, props = props, known = d ~= nil}
+    if d and d.tint then self.tint_kind[id] = d.tint end
+    if d and (d.connect or d.gate) then self.family[id] = d.connect or "gate" end
+  end
+  return id
+end
+
+-- A fresh voxel id: a cell shape (< 0) or a cube (> 0).
+function Registry:new_id(cell)
+  local id
+  if cell then
     id = self.next_cell
     self.next_cell = id - 1
   else
@@ -589,9 +736,68 @@ function Registry:state(name, props)
     self.next_cube = id + 1
   end
   if id < -32768 or id > 32767 then error("too many distinct block states for 16-bit voxel ids", 0) end
-  self.by_key[key] = id
-  if id ~= 0 then self.entries[id] = {key = key, name = name, def = d, props = props, known = d ~= nil} end
   return id
+end
+
+-- The variant of a biome-tinted id (self.tint_kind[id] ~= nil) for a tint class of minecraft.biomes: an extra
+-- voxel id, made on first use, one per (block state, class).
+function Registry:tinted(id, class)
+  local t = self.tint_cache[id]
+  if not t then
+    t = {}
+    self.tint_cache[id] = t
+  end
+  local v = t[class]
+  if v then return v end
+  local e = self.entries[id]
+  if not e or not self.tint_kind[id] then return id end
+  local key = e.key .. "@" .. class
+  v = self.by_key[key]
+  if not v then
+    v = self:new_id(id < 0)
+    self.by_key[key] = v
+    self.entries[v] = {key = key, name = e.name, def = e.def, props = e.props, known = e.known, tint = class, base = id}
+  end
+  t[class] = v
+  return v
+end
+
+-- The tint class of an id (nil when untinted).
+function Registry:tint(id)
+  local e = self.entries[id]
+  return e and e.tint
+end
+
+-- Blocks that are full cubes but that fences, walls and panes do not attach to (Minecraft's exceptions).
+local NO_ATTACH = {}
+for n in ([[glowstone sea_lantern pumpkin carved_pumpkin jack_o_lantern melon beacon barrier ice packed_ice
+            blue_ice frosted_ice glass tinted_glass]]):gmatch("%S+") do NO_ATTACH["minecraft:" .. n] = true end
+
+-- Whether a fence, wall or pane next to this id attaches to it: solid cubes (not glass, ice, leaves, lamps).
+function Registry:solid(id)
+  if id <= 0 then return false end
+  local v = self.solid_cache[id]
+  if v ~= nil then return v end
+  local e = self.entries[id]
+  local d = e and e.def
+  v = e ~= nil and not NO_ATTACH[e.name] and not (d and (d.mat == "glass" or d.mat == "leaves" or d.mat == "ice"
+                                                         or d.mat == "water" or e.name:find("shulker_box")))
+  self.solid_cache[id] = v
+  return v
+end
+
+-- The id of the same block as `id` with the connections `c` ({north = bool | "low" | "tall", ..., up = bool}).
+function Registry:connected(id, c)
+  local e = self.entries[id]
+  local props = {}
+  if e.props then for k, v in pairs(e.props) do props[k] = v end end
+  local wall = e.def and e.def.shape == "wall"
+  for _, k in ipairs(SIDES) do
+    local v = c[k]
+    props[k] = wall and (v == "tall" and "tall" or v and "low" or "none") or (v and "true" or "false")
+  end
+  if wall then props.up = c.up and "true" or "false" end
+  return self:state(e.name, props)
 end
 
 function Registry:legacy(id, data)
@@ -619,6 +825,16 @@ function Registry:emission(id)
   return e and e.def and e.def.emit
 end
 
+-- Every id handed out for a block name (all its states and biome variants), as a set {[id] = true}.
+function Registry:ids_of(name)
+  if not name:find(":", 1, true) then name = "minecraft:" .. name end
+  local out = {}
+  for id, e in pairs(self.entries) do
+    if e.name == name then out[id] = true end
+  end
+  return out
+end
+
 function Registry:name(id)
   local e = self.entries[id]
   return e and e.name
@@ -636,9 +852,15 @@ function Registry:define(grid)
     materials[k] = materials[k] or make_material(d, c)
     return materials[k]
   end
+  local tinted_defs = {}
   for _, id in ipairs(ids) do
     local e = self.entries[id]
     local d = e.def or {color = M.FALLBACK_COLOR, noise = 0}
+    if e.tint and d.tint then  -- a biome variant: the same definition with its colour (or top) tinted
+      local k = tostring(d) .. "@" .. e.tint
+      if not tinted_defs[k] then tinted_defs[k] = M.tinted_definition(d, e.tint) end
+      d = tinted_defs[k]
+    end
     if id > 0 then
       local axis = d.pillar and e.props and e.props.axis
       if (d.top or d.side or d.bottom) and (axis == "x" or axis == "z") then

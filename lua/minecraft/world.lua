@@ -15,7 +15,13 @@
 --   }
 --   stats: files, chunks, full, not_full, bad, bad_messages, sections, non_air, data_versions {dv = count}
 --          (0 = no DataVersion), formats {name = chunks}, statuses {status = chunks}, unknown, unknown_blocks,
---          probes {[i] = raw block}, bounds {lo = {x,y,z}, hi = {x,y,z}} (voxels loaded), emitters, seconds
+--          probes {[i] = raw block}, probe_biomes {[i] = tint class there}, bounds {lo = {x,y,z}, hi = {x,y,z}}
+--          (voxels loaded), emitters, connected_sections (pre-1.13 sections whose fences etc. were joined), seconds
+--
+-- Biome tints: blocks whose colour follows the biome (registry.tint_kind) become the registry's variant for the
+-- tint class at their position (minecraft.biomes reads the biome data of every format). Connections: 1.13+ block
+-- states name them; pre-1.13 sections holding fences, walls or panes are handed to the sink at the end of the
+-- load, once M.connect_section has joined those blocks to their neighbours (in any loaded section).
 --
 -- Block storage formats handled (the chunk NBT layout by version):
 --   legacy:     Level.Sections[].Blocks (byte per block) + Add (high nibble, optional) + Data (nibble); <= 1.12
@@ -26,6 +32,7 @@
 local torte = require "torte"
 local region = require "minecraft.region"
 local blocks = require "minecraft.blocks"
+local biomes = require "minecraft.biomes"
 local data = torte.data
 
 local M = {}
@@ -87,22 +94,75 @@ local function clip(ids, ox, oy, oz, b)
   return table.concat(rows)
 end
 
--- Decodes one section into (ids, non_air, counts_by_id); `reg` maps states to voxel ids.
+local PACK4096 = "<" .. ("i2"):rep(4096)
+
+-- Biome tints of a section whose blocks vary in biome: every voxel with an id in `tintable` becomes its variant
+-- for the class at its position (`b`: minecraft.biomes.section's result), in C++ (torte.data.map_int16).
+local function tint_voxels(ids, tintable, b, reg)
+  local sel, present = biomes.selector(b)
+  local maps = {}
+  for c in pairs(present) do
+    local m = {}
+    for id in pairs(tintable) do m[id] = reg:tinted(id, c) end
+    maps[biomes.INDEX[c]] = m
+  end
+  return data.map_int16(ids, maps, sel)
+end
+
+-- Applies biome tints to a decoded section (ids string, counts by id); returns the new ids string.
+local function tint_section(ids, by_id, reg, biome_fn)
+  local tintable
+  for id in pairs(by_id) do
+    if reg.tint_kind[id] then
+      tintable = tintable or {}
+      tintable[id] = true
+    end
+  end
+  if not tintable then return ids end
+  local b = biome_fn()
+  if not b then return ids end
+  if b.uniform then
+    local remap = {}
+    for id in pairs(tintable) do remap[id] = reg:tinted(id, b.uniform) end
+    return data.map_int16(ids, remap)
+  end
+  return tint_voxels(ids, tintable, b, reg)
+end
+
+-- Decodes one section into (ids, non_air, counts_by_id); `reg` maps states to voxel ids; `biome_fn()` gives the
+-- section's biomes (minecraft.biomes.section), asked only when a block of the palette is tinted.
 -- Returns nil for sections without blocks (light-only).
-local function palette_section(palette, states, dv, reg, where)
+local function palette_section(palette, states, dv, reg, where, biome_fn)
   local n = #palette
   if n == 0 then return nil end
   local map, air = {}, {}
+  local tinted, tint_kind = nil, reg.tint_kind
   for i = 1, n do
     local e = palette[i]
     local name = e.Name
     if type(name) ~= "string" then error(where .. ": palette entry " .. i .. " has no Name", 0) end
-    map[i] = reg:state(name, e.Properties)
+    local id = reg:state(name, e.Properties)
+    map[i] = id
     air[i] = blocks.AIR[name] or false
+    if tint_kind[id] then
+      tinted = tinted or {}
+      tinted[#tinted + 1] = i
+    end
+  end
+  local per_voxel  -- biomes that vary inside the section: tinted after unpacking
+  if tinted then
+    local b = biome_fn()
+    if b and b.uniform then
+      for _, i in ipairs(tinted) do map[i] = reg:tinted(map[i], b.uniform) end
+    elseif b then
+      per_voxel = b
+    end
   end
   if states == nil or (n == 1 and (type(states) ~= "userdata" or #states == 0)) then
     if n > 1 then error(where .. (": %d palette entries but no block data"):format(n), 0) end
-    return uniform(map[1]), air[1] and 0 or 4096, {[map[1]] = 4096}, map, nil
+    local ids = uniform(map[1])
+    if per_voxel then ids = tint_voxels(ids, {[map[1]] = true}, per_voxel, reg) end
+    return ids, air[1] and 0 or 4096, {[map[1]] = 4096}, map, nil
   end
   if type(states) ~= "userdata" then error(where .. ": block data is not a long array", 0) end
   local bits = math.max(4, ceil_log2(n))
@@ -117,10 +177,13 @@ local function palette_section(palette, states, dv, reg, where)
       by_id[map[i]] = (by_id[map[i]] or 0) + c
     end
   end
+  if per_voxel then
+    local tintable = {}
+    for _, i in ipairs(tinted) do tintable[map[i]] = true end
+    ids = tint_voxels(ids, tintable, per_voxel, reg)
+  end
   return ids, non_air, by_id, map, {states, bits, padded}
 end
-
-local PACK4096 = "<" .. ("i2"):rep(4096)
 local function legacy_section(sec, reg, where)
   local bl, dt, add = sec.Blocks, sec.Data, sec.Add
   if type(bl) ~= "string" or #bl ~= 4096 then error(where .. ": Blocks is not a 4096-byte array", 0) end
@@ -157,6 +220,45 @@ local function raw_legacy(sec, i)
   return ("%d:%d"):format(id, (sec.Data:byte((i >> 1) + 1) >> (4 * (i & 1))) & 15)
 end
 
+-- Hands a decoded section to the sink: clipped to the box, emitters collected, bounds grown.
+local function deliver(opt, stats, cx, cy, cz, ids, non_air, by_id)
+  local ox, oy, oz = cx * 16, cy * 16, cz * 16
+  local box = opt.box
+  if box then ids = clip(ids, ox, oy, oz, box) end
+  if not ids or not (non_air > 0 or by_id[0] ~= 4096) then return end
+  -- emitters: positions of blocks whose id emits
+  local reg = opt.registry
+  if opt.emitters then
+    for id in pairs(by_id) do
+      if id ~= 0 and reg:emission(id) and #stats.emitters < (opt.max_emitters or 4096) then
+        local init = 1
+        local pat = string.pack("<i2", id)
+        while true do
+          local at = ids:find(pat, init, true)
+          if not at then break end
+          if at % 2 == 1 then
+            local i = (at - 1) // 2
+            local e = stats.emitters
+            if #e >= (opt.max_emitters or 4096) then break end
+            e[#e + 1] = {ox + (i & 15), oy + (i >> 8), oz + ((i >> 4) & 15), id}
+            init = at + 2
+          else
+            init = at + 1
+          end
+        end
+      end
+    end
+  end
+  local b = stats.bounds
+  if ox < b.lo[1] then b.lo[1] = ox end
+  if oy < b.lo[2] then b.lo[2] = oy end
+  if oz < b.lo[3] then b.lo[3] = oz end
+  if ox + 16 > b.hi[1] then b.hi[1] = ox + 16 end
+  if oy + 16 > b.hi[2] then b.hi[2] = oy + 16 end
+  if oz + 16 > b.hi[3] then b.hi[3] = oz + 16 end
+  if opt.sink then opt.sink(cx, cy, cz, ids, non_air) end
+end
+
 -- Loads one chunk's root compound; updates stats, calls the sink. Errors name `where`.
 local function load_chunk(root, c, opt, stats, where)
   local reg = opt.registry
@@ -185,7 +287,6 @@ local function load_chunk(root, c, opt, stats, where)
   if type(sections) ~= "table" then error(where .. ": the section list is not a list", 0) end
   local cx, cz = level.xPos, level.zPos
   if math.type(cx) ~= "integer" or math.type(cz) ~= "integer" then cx, cz = c.x, c.z end
-  local box = opt.box
   for si = 1, #sections do
     local sec = sections[si]
     local cy = sec.Y
@@ -193,16 +294,18 @@ local function load_chunk(root, c, opt, stats, where)
     local swhere = ("%s, section Y=%d"):format(where, cy)
     local ids, non_air, by_id, map, packed
     local kind
+    local function biome_fn() return biomes.section(level, sec, cy) end
     if sec.block_states ~= nil then
       local bs = sec.block_states
       if type(bs) ~= "table" or type(bs.palette) ~= "table" then error(swhere .. ": block_states has no palette", 0) end
-      ids, non_air, by_id, map, packed = palette_section(bs.palette, bs.data, dv, reg, swhere)
+      ids, non_air, by_id, map, packed = palette_section(bs.palette, bs.data, dv, reg, swhere, biome_fn)
       kind = "root/block_states"
     elseif sec.Palette ~= nil then
-      ids, non_air, by_id, map, packed = palette_section(sec.Palette, sec.BlockStates, dv, reg, swhere)
+      ids, non_air, by_id, map, packed = palette_section(sec.Palette, sec.BlockStates, dv, reg, swhere, biome_fn)
       kind = dv >= SPANNING_BEFORE and "Level/Palette (padded)" or "Level/Palette (spanning)"
     elseif sec.Blocks ~= nil then
       ids, non_air, by_id = legacy_section(sec, reg, swhere)
+      ids = tint_section(ids, by_id, reg, biome_fn)
       kind = "Level/Blocks"
     end
     if ids then
@@ -227,71 +330,129 @@ local function load_chunk(root, c, opt, stats, where)
               end
               stats.probes[pi] = palette[index + 1].Name
             end
+            stats.probe_biomes[pi] = biomes.at(biome_fn(), p[1] & 15, p[2] & 15, p[3] & 15)
           end
         end
       end
-      if box then ids = clip(ids, ox, oy, oz, box) end
-      if ids and (non_air > 0 or by_id[0] ~= 4096) then
-        -- emitters: positions of blocks whose id emits
-        if opt.emitters then
-          for id in pairs(by_id) do
-            if id ~= 0 and reg:emission(id) and #stats.emitters < (opt.max_emitters or 4096) then
-              local init = 1
-              local pat = string.pack("<i2", id)
-              while true do
-                local at = ids:find(pat, init, true)
-                if not at then break end
-                if at % 2 == 1 then
-                  local i = (at - 1) // 2
-                  local e = stats.emitters
-                  if #e >= (opt.max_emitters or 4096) then break end
-                  e[#e + 1] = {ox + (i & 15), oy + (i >> 8), oz + ((i >> 4) & 15), id}
-                  init = at + 2
-                else
-                  init = at + 1
-                end
-              end
-            end
+      if kind == "Level/Blocks" then
+        local key = cx .. "," .. cy .. "," .. cz
+        -- Pre-1.13 block states carry no connections: fences, walls and panes are joined to their neighbours once
+        -- every section is loaded (M.connect_legacy); until then the loader keeps every legacy section.
+        local legacy = stats.legacy_sections
+        legacy[key] = ids
+        local family = reg.family
+        for id in pairs(by_id) do
+          if family[id] then
+            stats.pending[#stats.pending + 1] = {cx, cy, cz, non_air, by_id}
+            ids = nil
+            break
           end
         end
-        local b = stats.bounds
-        if ox < b.lo[1] then b.lo[1] = ox end
-        if oy < b.lo[2] then b.lo[2] = oy end
-        if oz < b.lo[3] then b.lo[3] = oz end
-        if ox + 16 > b.hi[1] then b.hi[1] = ox + 16 end
-        if oy + 16 > b.hi[2] then b.hi[2] = oy + 16 end
-        if oz + 16 > b.hi[3] then b.hi[3] = oz + 16 end
-        if opt.sink then opt.sink(cx, cy, cz, ids, non_air) end
       end
+      if ids then deliver(opt, stats, cx, cy, cz, ids, non_air, by_id) end
     end
   end
   if format then stats.formats[format] = (stats.formats[format] or 0) + 1 end
 end
 
+-- The id at block (x, y, z) of the world in `sections` ("cx,cy,cz" -> id strings); 0 outside.
+local function id_at(sections, x, y, z)
+  local s = sections[(x // 16) .. "," .. (y // 16) .. "," .. (z // 16)]
+  if not s then return 0 end
+  return (string.unpack("<i2", s, 2 * (((y & 15) << 8) | ((z & 15) << 4) | (x & 15)) + 1))
+end
+M.id_at = id_at
+
+-- Joins the fences, walls, glass panes and iron bars of pre-1.13 sections (`sections`: "cx,cy,cz" -> ids) to their
+-- neighbours as Minecraft 1.12 draws them: a side connects to the same family (wooden fences with each other,
+-- nether brick fences, panes with iron bars, walls), to fence gates (fences and walls), and to solid cubes. A wall
+-- shows its post unless it runs straight (north-south or east-west only) with air above. Returns the new ids
+-- string of the section at (cx, cy, cz).
+function M.connect_section(sections, cx, cy, cz, reg)
+  local ids = sections[cx .. "," .. cy .. "," .. cz]
+  local family = reg.family
+  local v = {string.unpack(PACK4096, ids)}
+  local ox, oy, oz = cx * 16, cy * 16, cz * 16
+  local changed = false
+  local function glass(nid)
+    local e = reg.entries[nid]
+    return nid > 0 and e ~= nil and e.def ~= nil and e.def.mat == "glass"
+  end
+  local function attaches(f, nid)
+    if nid == 0 then return false end
+    local nf = family[nid]
+    if nf then
+      if nf == f then return true end
+      if nf == "gate" then return f ~= "pane" end
+      return false
+    end
+    if f == "pane" and glass(nid) then return true end  -- panes join glass blocks, fences and walls do not
+    return reg:solid(nid)
+  end
+  for i = 1, 4096 do
+    local id = v[i]
+    local f = family[id]
+    if f and f ~= "gate" then
+      local x, y, z = ox + ((i - 1) & 15), oy + ((i - 1) >> 8), oz + (((i - 1) >> 4) & 15)
+      local c = {north = attaches(f, id_at(sections, x, y, z - 1)), south = attaches(f, id_at(sections, x, y, z + 1)),
+                 west = attaches(f, id_at(sections, x - 1, y, z)), east = attaches(f, id_at(sections, x + 1, y, z))}
+      if f == "wall" then
+        local straight = (c.north and c.south and not c.east and not c.west)
+                         or (c.east and c.west and not c.north and not c.south)
+        c.up = not straight or id_at(sections, x, y + 1, z) ~= 0
+      end
+      local nid = reg:connected(id, c)
+      if nid ~= id then
+        v[i] = nid
+        changed = true
+      end
+    end
+  end
+  if not changed then return ids end
+  return string.pack(PACK4096, table.unpack(v, 1, 4096))
+end
+
 -- Keeps only the top of each body of water: `sections` maps "cx,cy,cz" to id strings (as given to a sink); every
--- voxel with id `water` that has `water` right above it becomes empty. Returns the number of voxels emptied.
+-- voxel with a water id that has water right above it becomes empty. `water` is one id or a set {[id] = true}
+-- (water has one id per biome tint: Registry:ids_of). Returns the number of voxels emptied and the number of
+-- surface cells kept per id.
 -- (Rays then cross one water surface, not one interface per block.)
 function M.water_surfaces(sections, water)
-  if not water or water == 0 then return 0 end
-  local pat = string.pack("<i2", water)
-  local emptied = 0
+  if type(water) ~= "table" then
+    if not water or water == 0 then return 0, {} end
+    water = {[water] = true}
+  end
+  local pats = {}
+  for id in pairs(water) do
+    if id ~= 0 then pats[#pats + 1] = string.pack("<i2", id) end
+  end
+  if #pats == 0 then return 0, {} end
+  local function has_water(ids)
+    for _, pat in ipairs(pats) do
+      if ids:find(pat, 1, true) then return true end
+    end
+    return false
+  end
+  local emptied, surface = 0, {}
   -- Work on the original strings for "above" lookups, write new strings afterwards.
   local out = {}
   for key, ids in pairs(sections) do
-    if ids:find(pat, 1, true) then
+    if has_water(ids) then
       local cx, cy, cz = key:match("^(%-?%d+),(%-?%d+),(%-?%d+)$")
       local above_ids = sections[cx .. "," .. (tonumber(cy) + 1) .. "," .. cz]
       local v = {string.unpack(PACK4096, ids)}
-      local av = above_ids and above_ids:find(pat, 1, true) and {string.unpack(PACK4096, above_ids)} or nil
+      local av = above_ids and has_water(above_ids) and {string.unpack(PACK4096, above_ids)} or nil
       local changed = false
       for i = 1, 4096 do
-        if v[i] == water then
+        if water[v[i]] then
           local up
           if i <= 3840 then up = v[i + 256] else up = av and av[i - 3840] end
-          if up == water then
+          if water[up] then
             v[i] = 0
             changed = true
             emptied = emptied + 1
+          else
+            surface[v[i]] = (surface[v[i]] or 0) + 1
           end
         end
       end
@@ -300,7 +461,7 @@ function M.water_surfaces(sections, water)
   end
   -- Deep cells were decided from the original data (a cell stays deep even when the one above was emptied).
   for key, ids in pairs(out) do sections[key] = ids end
-  return emptied
+  return emptied, surface
 end
 
 function M.load(opt)
@@ -310,7 +471,8 @@ function M.load(opt)
   if #files == 0 then error(("minecraft.world.load: no region files (r.X.Z.mca) in '%s' or its region/ folder"):format(
     opt.dir), 0) end
   local stats = {files = #files, chunks = 0, full = 0, not_full = 0, bad = 0, bad_messages = {}, sections = 0,
-                 non_air = 0, data_versions = {}, statuses = {}, formats = {}, probes = {}, emitters = {},
+                 non_air = 0, data_versions = {}, statuses = {}, formats = {}, probes = {}, probe_biomes = {}, emitters = {},
+                 pending = {}, legacy_sections = {},
                  bounds = {lo = {math.huge, math.huge, math.huge}, hi = {-math.huge, -math.huge, -math.huge}}}
   local box = opt.box
   -- Open every file and list the chunks first, so progress is a percentage of all chunks.
@@ -352,6 +514,13 @@ function M.load(opt)
     end
     r.bytes = nil  -- let the file's memory go
   end
+  -- Pre-1.13 fences, walls and panes: joined to their neighbours now that every section is here.
+  for _, p in ipairs(stats.pending) do
+    local ids = M.connect_section(stats.legacy_sections, p[1], p[2], p[3], opt.registry)
+    deliver(opt, stats, p[1], p[2], p[3], ids, p[4], p[5])
+  end
+  stats.connected_sections = #stats.pending
+  stats.pending, stats.legacy_sections = nil, nil
   stats.unknown = opt.registry.unknown
   stats.unknown_blocks = opt.registry.unknown_blocks
   stats.registry = opt.registry

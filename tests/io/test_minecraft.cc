@@ -271,6 +271,23 @@ struct Probe {
   const char* block;   // the modern name the registry gives the voxel there ("air" when empty)
 };
 
+// The biome tint class at a position (from the raw biome id or name there, decoded independently by a Python
+// script over scripts/mc_reference.py, then mapped by hand to minecraft.biomes' classes) and the tint the voxel there
+// carries ("nil": the block is not tinted).
+struct TintProbe {
+  int x, y, z;
+  const char* cls;
+  const char* voxel_tint;
+};
+
+// The registry key (and so the cell shape) of the voxel at a position. For 1.13+ worlds the connections are the
+// block state's north/east/south/west properties as the Python decoder prints them; pre-1.13 worlds are computed
+// from neighbours (the debug world's blocks stand alone: no connection, walls with their post).
+struct ShapeProbe {
+  int x, y, z;
+  const char* key;
+};
+
 struct World {
   const char* dir;
   int chunks, full;
@@ -278,6 +295,8 @@ struct World {
   long long non_air;
   const char* format;
   std::vector<Probe> probes;
+  std::vector<TintProbe> tints = {};
+  std::vector<ShapeProbe> shapes = {};
 };
 
 // Counts: SOURCES.md and scripts/mc_reference.py agree on all of them. Probes: scripts/mc_reference.py.
@@ -287,55 +306,90 @@ const World kWorldList[] = {
       {34, -60, 93, "minecraft:deepslate", "minecraft:deepslate"},
       {158, -7, 158, "minecraft:sculk_vein", "minecraft:sculk_vein"},
       {256, 81, 16, "minecraft:stone", "minecraft:stone"},
-      {35, -61, 93, "minecraft:deepslate", "minecraft:deepslate"}}},
+      {35, -61, 93, "minecraft:deepslate", "minecraft:deepslate"}},
+     {{8, 62, 136, "ocean", "ocean"},           // water in minecraft:river
+      {56, 131, 168, "badlands", "badlands"}},  // grass_block in minecraft:eroded_badlands
+     {{0, -46, 14, "minecraft:deepslate_tile_wall,c=0101"},  // west/east low, up false
+      {25, 84, 27, "minecraft:dark_oak_fence,c=1000"},
+      {19, -47, 32, "minecraft:glass_pane,c=1010"},
+      {22, -47, 50, "minecraft:glass_pane,c=0111"},
+      {61, 86, 40, "minecraft:dark_oak_fence,c=0100"}}},
     {"mcaselector-anvil112", 103, 103, 1343, 66859, "Level/Blocks",
-     {{17, 70, 33, "51:8", "minecraft:fire"}, {17, 71, 33, "0:0", "air"}, {18, 70, 33, "0:0", "air"}}},
+     {{17, 70, 33, "51:8", "minecraft:fire"}, {17, 71, 33, "0:0", "air"}, {18, 70, 33, "0:0", "air"}},
+     {},
+     {{79, 70, 25, "minecraft:nether_brick_fence,c=0000"},
+      {67, 70, 67, "minecraft:oak_fence,c=0000"},
+      {91, 70, 3, "minecraft:cobblestone_wall,c=0000u"},
+      {73, 70, 1, "minecraft:glass_pane,c=0000"}}},
     {"mcaselector-anvil113", 147, 147, 1631, 79325, "Level/Palette (spanning)",
      {{17, 70, 161, "minecraft:yellow_bed", "minecraft:yellow_bed"},
       {17, 71, 161, "minecraft:air", "air"},
-      {18, 70, 161, "minecraft:air", "air"}}},
+      {18, 70, 161, "minecraft:air", "air"}},
+     {},
+     {{91, 70, 1, "minecraft:iron_bars,c=1100"},
+      {113, 70, 1, "minecraft:mossy_cobblestone_wall,c=1111"},   // up false
+      {113, 70, 17, "minecraft:mossy_cobblestone_wall,c=1101"}}},
     {"prismarine-1.12.2", 105, 105, 1343, 1751731, "Level/Blocks",
      {{272, 48, -64, "1:0", "minecraft:stone"},
       {397, 68, -35, "18:0", "minecraft:oak_leaves"},
       {100, 57, -6, "1:0", "minecraft:stone"},
       {272, 49, -64, "1:0", "minecraft:stone"},
-      {398, 67, -35, "18:8", "minecraft:oak_leaves"}}},
+      {398, 67, -35, "18:8", "minecraft:oak_leaves"}},
+     {{56, 77, -72, "mountains", "mountains"},  // water, biome 3
+      {120, 62, -56, "forest", "forest"},       // grass, biome 4
+      {424, 62, -56, "taiga", "taiga"}}}, 
     {"prismarine-1.14.4", 299, 299, 1976, 4746732, "Level/Palette (spanning)",
      {{304, 16, -176, "minecraft:granite", "minecraft:granite"},
       {306, 36, -99, "minecraft:stone", "minecraft:stone"},
       {251, 73, -38, "minecraft:birch_leaves", "minecraft:birch_leaves"},
       {304, 17, -176, "minecraft:stone", "minecraft:stone"},
-      {307, 35, -99, "minecraft:stone", "minecraft:stone"}}},
+      {307, 35, -99, "minecraft:stone", "minecraft:stone"}},
+     {{72, 62, -200, "ocean", "ocean"},               // water, biome 0
+      {424, 62, -152, "dark_forest", "dark_forest"},  // water, biome 29
+      {376, 62, -200, "plains", "plains"}},           // water, biome 16 (beach)
+     {{357, 15, -198, "minecraft:oak_fence,c=0010"}, {378, 23, -186, "minecraft:oak_fence,c=0001"}}},
     {"prismarine-1.16", 253, 253, 2566, 5082508, "Level/Palette (padded)",
      {{192, 16, -144, "minecraft:stone", "minecraft:stone"},
       {324, 84, -83, "minecraft:water", "minecraft:water"},
       {356, 105, -38, "minecraft:stone", "minecraft:stone"},
       {192, 17, -144, "minecraft:stone", "minecraft:stone"},
-      {325, 83, -83, "minecraft:grass_block", "minecraft:grass_block"}}},
+      {325, 83, -83, "minecraft:grass_block", "minecraft:grass_block"}},
+     {{72, 62, -168, "birch_forest", "birch_forest"},  // grass_block, 3D biome 27
+      {328, 76, -168, "mountains", "mountains"},       // grass_block, biome 3
+      {104, 71, -136, "forest", "forest"}}},           // oak_leaves, biome 18
     {"prismarine-1.21.1", 225, 16, 3955, 499827, "root/block_states",
      {{48, -48, 0, "minecraft:deepslate", "minecraft:deepslate"},
       {3, -44, 45, "minecraft:deepslate", "minecraft:deepslate"},
       {1, 64, 61, "minecraft:oak_log", "minecraft:oak_log"},
       {48, -47, 0, "minecraft:deepslate_diamond_ore", "minecraft:deepslate_diamond_ore"},
-      {4, -45, 45, "minecraft:deepslate", "minecraft:deepslate"}}},
+      {4, -45, 45, "minecraft:deepslate", "minecraft:deepslate"}},
+     {{8, 62, 8, "plains", "plains"}, {24, 62, 8, "ocean", "ocean"}, {24, 62, 24, "forest", "forest"}}},
     {"prismarine-1.8.9", 300, 300, 0, 4948489, "Level/Blocks",
      {{-48, 48, 112, "1:0", "minecraft:stone"},
       {-190, 4, 253, "1:0", "minecraft:stone"},
       {-92, 41, 362, "1:0", "minecraft:stone"},
       {-48, 49, 112, "1:0", "minecraft:stone"},
-      {-189, 3, 253, "7:0", "minecraft:bedrock"}}},
+      {-189, 3, 253, "7:0", "minecraft:bedrock"}},
+     {{-152, 72, 56, "taiga", "nil"},     // spruce leaves (18:1) keep their own colour
+      {-120, 63, 56, "taiga", "taiga"},   // grass, biome 5
+      {-136, 62, 56, "ocean", "ocean"},   // water, biome 7 (river)
+      {-8, 62, 280, "forest", "forest"},  // water, biome 4
+      {-152, 62, 328, "plains", "plains"}}},  // water, biome 16 (beach)
     {"querz-nbt-1.18-21w44a-lushcave", 1, 1, 2845, 31961, "root/block_states",
      {{7728, -48, -4208, "minecraft:deepslate", "minecraft:deepslate"},
       {7730, 4, -4195, "minecraft:stone", "minecraft:stone"},
       {7732, 57, -4198, "minecraft:water", "minecraft:water"},
       {7728, -47, -4208, "minecraft:deepslate", "minecraft:deepslate"},
-      {7731, 3, -4195, "minecraft:deepslate", "minecraft:deepslate"}}},
+      {7731, 3, -4195, "minecraft:deepslate", "minecraft:deepslate"}},
+     {{7732, 57, -4198, "mountains", "mountains"},  // water in minecraft:stony_shore (a 2-entry biome palette)
+      {7730, 4, -4195, "plains", "nil"}}},          // stone in minecraft:lush_caves
     {"querz-nbt-1.18.2", 562, 154, 2975, 4923982, "root/block_states",
      {{96, 16, 32, "minecraft:stone", "minecraft:stone"},
       {66, -12, 109, "minecraft:deepslate", "minecraft:deepslate"},
       {20, -7, 170, "minecraft:deepslate", "minecraft:deepslate"},
       {96, 17, 32, "minecraft:air", "air"},
-      {67, -13, 109, "minecraft:deepslate", "minecraft:deepslate"}}},
+      {67, -13, 109, "minecraft:deepslate", "minecraft:deepslate"}},
+     {{56, 62, 8, "frozen_ocean", "frozen_ocean"}, {88, 62, 8, "frozen_ocean", "frozen_ocean"}}},  // deep_frozen
 };
 
 // Loads world=<dir> with probes=x,y,z;...; prints "key value" lines.
@@ -343,10 +397,17 @@ const char kWorldScript[] = R"LUA(
 local world = require "minecraft.world"
 local blocks = require "minecraft.blocks"
 local args = torte.args
-local probes = {}
-for x, y, z in tostring(args.probes):gmatch("(%-?%d+),(%-?%d+),(%-?%d+)") do
-  probes[#probes + 1] = {tonumber(x), tonumber(y), tonumber(z)}
+local function positions(s)
+  local out = {}
+  for x, y, z in tostring(s or ""):gmatch("(%-?%d+),(%-?%d+),(%-?%d+)") do
+    out[#out + 1] = {tonumber(x), tonumber(y), tonumber(z)}
+  end
+  return out
 end
+local probes = positions(args.probes)
+local tints, shapes = positions(args.tints), positions(args.shapes)
+local np = #probes
+for _, p in ipairs(tints) do probes[#probes + 1] = p end
 local sections = {}
 local reg = blocks.registry()
 local st = world.load{dir = args.world, registry = reg, probes = probes,
@@ -360,7 +421,15 @@ for f, n in pairs(st.formats) do print("format " .. f) end
 for i, p in ipairs(probes) do
   local ids = sections[(p[1] // 16) .. "," .. (p[2] // 16) .. "," .. (p[3] // 16)]
   local v = ids and string.unpack("<i2", ids, 2 * (((p[2] & 15) << 8) | ((p[3] & 15) << 4) | (p[1] & 15)) + 1) or 0
-  print(("probe %d %s %s"):format(i, tostring(st.probes[i]), v == 0 and "air" or reg:name(v)))
+  if i <= np then
+    print(("probe %d %s %s"):format(i, tostring(st.probes[i]), v == 0 and "air" or reg:name(v)))
+  else
+    print(("tint %d %s %s"):format(i - np, tostring(st.probe_biomes[i]), tostring(reg:tint(v))))
+  end
+end
+for i, p in ipairs(shapes) do
+  local v = world.id_at(sections, p[1], p[2], p[3])
+  print(("shape %d %s"):format(i, v == 0 and "air" or reg.entries[v].key))
 end
 print("ok")
 )LUA";
@@ -368,11 +437,15 @@ print("ok")
 void check_world(const World& w) {
   if (!have_worlds()) return;
   McDir dir(std::string("world_") + w.dir);
-  std::string probes;
-  for (const Probe& p : w.probes)
-    probes += std::to_string(p.x) + "," + std::to_string(p.y) + "," + std::to_string(p.z) + ";";
-  const std::string out =
-      run_ok(dir, kWorldScript, {"world=" + (kWorlds / w.dir).string(), "probes=" + probes});
+  auto pos = [](int x, int y, int z) {
+    return std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(z) + ";";
+  };
+  std::string probes, tints, shapes;
+  for (const Probe& p : w.probes) probes += pos(p.x, p.y, p.z);
+  for (const TintProbe& p : w.tints) tints += pos(p.x, p.y, p.z);
+  for (const ShapeProbe& p : w.shapes) shapes += pos(p.x, p.y, p.z);
+  const std::string out = run_ok(dir, kWorldScript, {"world=" + (kWorlds / w.dir).string(), "probes=" + probes,
+                                                     "tints=" + tints, "shapes=" + shapes});
   const std::vector<std::string> lines = lines_of(out);
   auto has = [&](const std::string& line) {
     INFO("expected line: " << line << "\nstdout:\n" << out);
@@ -386,6 +459,9 @@ void check_world(const World& w) {
   has(std::string("format ") + w.format);
   for (size_t i = 0; i < w.probes.size(); ++i)
     has("probe " + std::to_string(i + 1) + " " + w.probes[i].raw + " " + w.probes[i].block);
+  for (size_t i = 0; i < w.tints.size(); ++i)
+    has("tint " + std::to_string(i + 1) + " " + w.tints[i].cls + " " + w.tints[i].voxel_tint);
+  for (size_t i = 0; i < w.shapes.size(); ++i) has("shape " + std::to_string(i + 1) + " " + w.shapes[i].key);
 }
 
 }  // namespace
@@ -621,4 +697,340 @@ TEST_CASE("minecraft scene: the lush cave world by bare name, with a box and a c
   CHECK(fs::exists(dir / "cave.png"));
   const std::string bad = check_error(run_torte(dir, {"--quiet", scene, "box=1,2,3", "output=" + (dir / "x.exr")}, 60));
   CHECK_THAT(bad, Catch::Contains("'box' needs 6"));
+}
+
+TEST_CASE("minecraft data: map_int16 replaces int16 values, per value or through a selector", "[minecraft]") {
+  McDir dir("map_int16");
+  run_ok(dir, R"LUA(
+local D = torte.data
+local P = string.pack
+local s = P("<i2i2i2i2i2", 1, -5, 7, 1, 32767)
+assert(D.map_int16(s, {[1] = 2, [32767] = -32768}) == P("<i2i2i2i2i2", 2, -5, 7, 2, -32768))
+assert(D.map_int16(s, {}) == s)
+-- A selector: value i goes through maps[select:byte(i) + 1]; a missing map leaves the value.
+assert(D.map_int16(s, {{[1] = 10}, nil, {[1] = 30, [7] = 70}}, "\0\0\2\2\1") == P("<i2i2i2i2i2", 10, -5, 70, 30, 32767))
+local function err(...)
+  local ok, e = pcall(D.map_int16, ...)
+  assert(not ok)
+  return e
+end
+assert(err("abc", {}):find("odd length", 1, true))
+assert(err(s, {[1] = 40000}):find("integers in [-32768, 32767]", 1, true))
+assert(err(s, {{}}, "\0"):find("the selector has 1 bytes for 5 values", 1, true))
+assert(err(s, 5):find("expects a table", 1, true))
+print("ok")
+)LUA");
+}
+
+// ---- LZ4 chunks (Minecraft 1.20.5+) -----------------------------------------------------------------------------
+
+TEST_CASE("minecraft data: lz4_block, lz4_compress and xxhash32", "[minecraft]") {
+  McDir dir("lz4");
+  run_ok(dir, R"LUA(
+local D = torte.data
+-- XXH32 reference values (xxHash's own test vectors).
+assert(D.xxhash32("") == 0x02CC5D05, ("%08x"):format(D.xxhash32("")))
+assert(D.xxhash32("a") == 0x550D7456, ("%08x"):format(D.xxhash32("a")))
+assert(D.xxhash32("abc") == 0x32D153FF, ("%08x"):format(D.xxhash32("abc")))
+assert(D.xxhash32("Nobody inspects the spammish repetition") == 0xE2293B2F)
+assert(D.xxhash32("xxabcxx", 0, 3, 5) == D.xxhash32("abc"), "a range")
+assert(D.xxhash32("abc", 1) ~= D.xxhash32("abc"), "the seed matters")
+-- A block written by hand from the LZ4 block format (no liblz4 involved): 3 literals "abc", a match at offset 3
+-- of 20 bytes (overlapping: a run), then 5 final literals.
+local block = "\x3f" .. "abc" .. "\x03\x00" .. "\x01" .. "\x50" .. "XYZWV"
+local want = ("abc"):rep(7) .. "ab" .. "XYZWV"
+assert(D.lz4_block(block, #want) == want)
+assert(D.lz4_block("..." .. block .. "..", #want, 4, -3) == want, "a range")
+-- Round trips through liblz4's compressor: text, runs, random bytes, empty.
+local parts = {}
+for i = 1, 3000 do parts[i] = string.char((i * 7919) % 251) end
+for _, s in ipairs({("hello torte "):rep(500), ("\0"):rep(70000), table.concat(parts), "x", ""}) do
+  local z = D.lz4_compress(s)
+  assert(D.lz4_block(z, #s) == s, #s)
+end
+-- Errors: corrupt, truncated, wrong sizes.
+local function err(...)
+  local ok, e = pcall(D.lz4_block, ...)
+  assert(not ok, "expected an error")
+  return e
+end
+local z = D.lz4_compress(("hello torte "):rep(500))
+assert(err(z, 6001):find("size mismatch: the block decompresses to 6000 bytes, expected 6001", 1, true), err(z, 6001))
+assert(err(z, 5999):find("corrupt or truncated input", 1, true), err(z, 5999))
+for cut = 1, #z - 1 do assert(err(z:sub(1, cut), 6000):find("torte.data.lz4_block: ", 1, true)) end
+assert(err("\x3f" .. "abc" .. "\x09\x00\x01\x50XYZWV", 28):find("corrupt", 1, true), "offset before the start")
+assert(err("", 5):find("empty input", 1, true))
+assert(err(z, -1):find("decompressed size", 1, true))
+assert(err(42, 1):find("expects a string", 1, true))
+print("ok")
+)LUA");
+}
+
+namespace {
+
+// Lua helpers for the tests below: an NBT writer, an Anvil region writer and a 1.12-format chunk.
+const char kRegionWriter[] = R"LUA(
+local P = string.pack
+local W = {}
+local function tag(t, n, payload) return P("B", t) .. P(">s2", n) .. payload end
+W.tag = tag
+function W.compound(fields) return table.concat(fields) .. "\0" end
+-- A region file at `path` holding `chunks` ({lx, lz, payload bytes}) with compression byte `compression`.
+function W.region(path, chunks, compression)
+  local loc, body, sector = {}, {}, 2
+  for _, c in ipairs(chunks) do
+    local bytes = P(">I4B", #c[3] + 1, compression) .. c[3]
+    local n = (#bytes + 4095) // 4096
+    body[#body + 1] = bytes .. ("\0"):rep(n * 4096 - #bytes)
+    loc[c[1] + 32 * c[2]] = (sector << 8) | n
+    sector = sector + n
+  end
+  local h = {}
+  for i = 0, 1023 do h[#h + 1] = P(">I4", loc[i] or 0) end
+  for i = 0, 1023 do h[#h + 1] = P(">I4", 1700000000) end
+  local f = assert(io.open(path, "wb"))
+  f:write(table.concat(h), table.concat(body))
+  f:close()
+end
+-- One pre-1.13 chunk (DataVersion 1343) at (cx, cz) with one section Y=4 (y 64..79): blocks {[{x, y, z}] = id}
+-- in chunk-local coordinates (y 0..15 in the section) and a biome id per column from biome(x, z).
+function W.legacy_chunk(cx, cz, blocks, biome)
+  local b = {}
+  for i = 1, 4096 do b[i] = 0 end
+  for _, e in ipairs(blocks) do b[((e[2] * 16 + e[3]) * 16 + e[1]) + 1] = e[4] end
+  local bytes = {}
+  for i = 1, 4096 do bytes[i] = string.char(b[i]) end
+  local cols = {}
+  for z = 0, 15 do for x = 0, 15 do cols[#cols + 1] = string.char(biome(x, z)) end end
+  local section = W.compound{tag(1, "Y", P(">i1", 4)), tag(7, "Blocks", P(">i4", 4096) .. table.concat(bytes)),
+                             tag(7, "Data", P(">i4", 2048) .. ("\0"):rep(2048))}
+  local level = tag(10, "Level", W.compound{tag(3, "xPos", P(">i4", cx)), tag(3, "zPos", P(">i4", cz)),
+                                            tag(9, "Sections", P(">Bi4", 10, 1) .. section),
+                                            tag(7, "Biomes", P(">i4", 256) .. table.concat(cols))})
+  return tag(10, "", W.compound{level, tag(3, "DataVersion", P(">i4", 1343))})
+end
+return W
+)LUA";
+
+}  // namespace
+
+TEST_CASE("minecraft region: LZ4 chunks (LZ4Block streams) load like zlib ones; bad streams name file and chunk",
+          "[minecraft]") {
+  if (!have_worlds()) return;
+  McDir dir("lz4_region");
+  dir.write("writer.lua", kRegionWriter);
+  fs::create_directories(dir.path / "lz4");
+  fs::create_directories(dir.path / "bad");
+  const std::string out = run_ok(dir, R"LUA(
+package.path = "./?.lua;" .. package.path
+local W = require "writer"
+local region = require "minecraft.region"
+local world = require "minecraft.world"
+local D = torte.data
+-- The stream format itself: several blocks (16 KiB each), a raw (incompressible) block, the end block.
+local parts = {}
+local x = 12345
+for i = 1, 20000 do
+  x = (x * 1103515245 + 12345) & 0x7fffffff
+  parts[i] = string.char((x >> 16) & 255)
+end
+local noise = table.concat(parts)
+for _, s in ipairs({("abc"):rep(30000), noise, "", "z"}) do
+  local enc = region.lz4_stream_encode(s, 16384)
+  assert(region.lz4_stream(enc) == s)
+end
+assert(region.lz4_stream_encode(noise, 65536):byte(9) == 0x16, "incompressible data is stored raw (0x10 | level 6)")
+-- Re-encode every chunk of a real region as LZ4 (compression byte 4), in blocks of 8 KiB.
+local src = torte.args.world .. "/r.0.-1.mca"
+local r = region.open(src)
+local chunks = {}
+for _, c in ipairs(r:chunks()) do
+  chunks[#chunks + 1] = {c.lx, c.lz, region.lz4_stream_encode(r:payload(c), 8192)}
+end
+W.region("lz4/r.0.-1.mca", chunks, 4)
+local function load(dir)
+  local sections = {}
+  local st = world.load{dir = dir, sink = function(cx, cy, cz, ids) sections[cx .. "," .. cy .. "," .. cz] = ids end}
+  return st, sections
+end
+local a, sa = load(torte.args.world)
+local b, sb = load("lz4")
+assert(a.chunks == b.chunks and a.full == b.full and a.non_air == b.non_air and a.sections == b.sections)
+local n = 0
+for k, ids in pairs(sa) do
+  assert(sb[k] == ids, k)
+  n = n + 1
+end
+print("sections " .. n)
+-- Damaged streams, one chunk each: the loader's error names the file and the chunk.
+local good = region.lz4_stream_encode(r:payload(r:chunks()[1]), 8192)
+local cases = {
+  magic = "LZ5Block" .. good:sub(9),
+  truncated = good:sub(1, 300),
+  no_end = good:sub(1, -22),
+  size = good:sub(1, 13) .. string.pack("<i4", string.unpack("<i4", good, 14) - 1) .. good:sub(18),
+  checksum = good:sub(1, 17) .. string.pack("<I4", (string.unpack("<I4", good, 18) + 1) & 0x0FFFFFFF) .. good:sub(22),
+  data = good:sub(1, 40) .. "\255\255\255\255" .. good:sub(45),
+  method = good:sub(1, 8) .. "\x36" .. good:sub(10),
+  trailing = good .. "xyz",
+}
+local short = region.lz4_stream_encode(("abc"):rep(100))
+cases.size_big = short:sub(1, 13) .. string.pack("<i4", 301) .. short:sub(18)
+for _, name in ipairs({"magic", "truncated", "no_end", "size", "size_big", "checksum", "data", "method", "trailing"}) do
+  local bytes = cases[name]
+  W.region("bad/r.0.-1.mca", {{1, 31, bytes}}, 4)
+  local ok, e = pcall(world.load, {dir = "bad"})
+  assert(not ok)
+  assert(e:find("bad/r.0.-1.mca: chunk (1, -1) (entry 1,31 of the region): LZ4 block ", 1, true), e)
+  print(name .. ": " .. e:match("LZ4 block .*"))
+end
+print("ok")
+)LUA",
+                                 {"world=" + (kWorlds / "prismarine-1.12.2").string()});
+  const std::vector<std::string> lines = lines_of(out);
+  auto has = [&](const std::string& line) {
+    INFO("expected line: " << line << "\nstdout:\n" << out);
+    CHECK(std::find(lines.begin(), lines.end(), line) != lines.end());
+  };
+  has("sections 534");
+  has("magic: LZ4 block 1 at byte 0: bad magic (expected 'LZ4Block')");
+  has("truncated: LZ4 block 1 at byte 0: truncated input: 1045 compressed bytes, 279 left");
+  has("no_end: LZ4 block 9 at byte 5214: truncated input: the stream ends without its end block");
+  has("method: LZ4 block 1 at byte 0: unknown compression method 0x30");
+  has("trailing: LZ4 block 9 at byte 5214: 3 bytes of trailing data after the end block");
+  has("size_big: LZ4 block 1 at byte 0: torte.data.lz4_block: size mismatch: the block decompresses to 300 bytes, "
+      "expected 301");
+  has("checksum: LZ4 block 1 at byte 0: checksum mismatch (corrupt data)");
+  CHECK_THAT(out, Catch::Contains("size: LZ4 block 1 at byte 0: torte.data.lz4_block: corrupt or truncated input"));
+  CHECK_THAT(out, Catch::Contains("data: LZ4 block 1 at byte 0: "));
+}
+
+TEST_CASE("minecraft world: pre-1.13 fences, walls, panes join their neighbours; biomes tint per column",
+          "[minecraft]") {
+  McDir dir("connect");
+  dir.write("writer.lua", kRegionWriter);
+  fs::create_directories(dir.path / "w");
+  const std::string out = run_ok(dir, R"LUA(
+package.path = "./?.lua;" .. package.path
+local W = require "writer"
+local world = require "minecraft.world"
+local blocks = require "minecraft.blocks"
+-- Ids: 1 stone, 2 grass, 9 water, 20 glass, 85 oak fence, 101 iron bars, 102 glass pane, 107 fence gate,
+-- 113 nether brick fence, 139 cobblestone wall, 160 stained glass pane. Section y 0 = world y 64.
+local a = {
+  {13, 0, 2, 85}, {14, 0, 2, 85}, {15, 0, 2, 85},        -- a fence row running into the next chunk
+  {5, 0, 4, 1}, {5, 0, 5, 85}, {6, 0, 5, 20}, {4, 0, 5, 113}, {5, 0, 6, 107},  -- stone N, glass E, nether W, gate S
+  {8, 0, 7, 20}, {8, 0, 8, 102}, {9, 0, 8, 101}, {8, 0, 9, 1},   -- a pane between glass, bars and stone
+  {8, 0, 12, 160}, {9, 0, 12, 102},                     -- stained and plain panes join
+  {2, 0, 10, 139}, {2, 0, 11, 139}, {2, 0, 12, 139},    -- a straight wall, air above: no post in the middle
+  {11, 0, 10, 139}, {11, 0, 11, 139}, {11, 0, 12, 139}, {11, 1, 11, 1},  -- the same with a block above
+  {1, 0, 14, 2}, {12, 0, 14, 2}, {3, 1, 3, 9},          -- grass in forest and swamp columns, water
+}
+local b = {{0, 0, 2, 85}}
+-- Biomes: forest (4) for x < 8, swamp (6) for x >= 8 in chunk (0, 0); chunk (1, 0) all plains (1).
+W.region("w/r.0.0.mca", {{0, 0, W.legacy_chunk(0, 0, a, function(x) return x < 8 and 4 or 6 end)},
+                         {1, 0, W.legacy_chunk(1, 0, b, function() return 1 end)}}, 3)
+local reg = blocks.registry()
+local sections = {}
+local st = world.load{dir = "w", registry = reg, sink = function(cx, cy, cz, ids) sections[cx .. "," .. cy .. "," .. cz] = ids end}
+assert(st.full == 2 and st.connected_sections == 2, st.connected_sections)
+for _, p in ipairs({{13, 2}, {14, 2}, {15, 2}, {16, 2}, {5, 5}, {4, 5}, {8, 8}, {9, 8}, {8, 12}, {9, 12}, {2, 10},
+                    {2, 11}, {2, 12}, {11, 11}, {1, 14}, {12, 14}}) do
+  local v = world.id_at(sections, p[1], 64, p[2])
+  print(("%d,%d %s %s"):format(p[1], p[2], reg.entries[v].key, tostring(reg:tint(v))))
+end
+local v = world.id_at(sections, 3, 65, 3)
+print("water " .. reg.entries[v].key)
+-- Every shape builds.
+reg:define(torte.voxel.grid{})
+print("ok")
+)LUA");
+  const std::vector<std::string> lines = lines_of(out);
+  auto has = [&](const std::string& line) {
+    INFO("expected line: " << line << "\nstdout:\n" << out);
+    CHECK(std::find(lines.begin(), lines.end(), line) != lines.end());
+  };
+  // Connection codes: north, east, south, west (0 none, 1 joined, 2 tall), then "u" when a wall shows its post.
+  has("13,2 minecraft:oak_fence,c=0100 nil");
+  has("14,2 minecraft:oak_fence,c=0101 nil");
+  has("15,2 minecraft:oak_fence,c=0101 nil");  // joined across the chunk border
+  has("16,2 minecraft:oak_fence,c=0001 nil");
+  has("5,5 minecraft:oak_fence,c=1010 nil");   // stone and gate; not glass, not the nether brick fence
+  has("4,5 minecraft:nether_brick_fence,c=0000 nil");
+  has("8,8 minecraft:glass_pane,c=1110 nil");  // glass, bars and stone
+  has("9,8 minecraft:iron_bars,c=0001 nil");
+  has("8,12 minecraft:white_stained_glass_pane,c=0100 nil");
+  has("9,12 minecraft:glass_pane,c=0001 nil");
+  has("2,10 minecraft:cobblestone_wall,c=0010u nil");
+  has("2,11 minecraft:cobblestone_wall,c=1010 nil");
+  has("2,12 minecraft:cobblestone_wall,c=1000u nil");
+  has("11,11 minecraft:cobblestone_wall,c=1010u nil");
+  has("1,14 minecraft:grass_block@forest forest");
+  has("12,14 minecraft:grass_block@swamp swamp");
+  has("water minecraft:water@forest");
+}
+
+TEST_CASE("minecraft blocks: connection states, biome variants and their looks", "[minecraft]") {
+  McDir dir("variants");
+  run_ok(dir, R"LUA(
+local blocks = require "minecraft.blocks"
+local biomes = require "minecraft.biomes"
+local reg = blocks.registry()
+-- 1.13+ states: the connection properties pick the shape; "true" (walls before 1.16) and "low" are the same.
+local function fence(n, e, s, w)
+  return reg:state("minecraft:oak_fence", {north = n, east = e, south = s, west = w, waterlogged = "false"})
+end
+local f1, f2 = fence("true", "false", "true", "false"), fence("false", "true", "false", "true")
+assert(f1 < 0 and f2 < 0 and f1 ~= f2 and fence("true", "false", "true", "false") == f1)
+local w1 = reg:state("minecraft:cobblestone_wall", {north = "true", south = "true", east = "false", west = "false", up = "false"})
+local w2 = reg:state("minecraft:cobblestone_wall", {north = "low", south = "low", east = "none", west = "none", up = "false"})
+local w3 = reg:state("minecraft:cobblestone_wall", {north = "tall", south = "tall", east = "none", west = "none", up = "false"})
+assert(w1 == w2 and w2 ~= w3)
+assert(reg.entries[w3].key == "minecraft:cobblestone_wall,c=2020")
+assert(reg.family[f1] == "wood_fence" and reg.family[w1] == "wall")
+assert(reg.family[reg:state("minecraft:nether_brick_fence")] == "nether_fence")
+assert(reg.family[reg:state("minecraft:iron_bars")] == "pane" and reg.family[reg:state("minecraft:red_stained_glass_pane")] == "pane")
+assert(reg.family[reg:state("minecraft:oak_fence_gate", {facing = "north"})] == "gate")
+assert(reg:solid(reg:state("minecraft:stone")) and not reg:solid(reg:state("minecraft:glass")))
+assert(not reg:solid(reg:state("minecraft:oak_leaves")) and not reg:solid(f1))
+local c = blocks.connections({north = "true", east = "false", south = "true", west = "false"})
+assert(c.north == "low" and not c.east and c.south and not c.west)
+-- Biome classes: names and numeric ids.
+assert(biomes.class_of("minecraft:dark_forest") == "dark_forest" and biomes.class_of(29) == "dark_forest")
+assert(biomes.class_of("minecraft:mangrove_swamp") == "mangrove_swamp" and biomes.class_of(6) == "swamp")
+assert(biomes.class_of("minecraft:warm_ocean") == "warm_ocean" and biomes.class_of(44) == "warm_ocean")
+assert(biomes.class_of("minecraft:snowy_plains") == "snowy" and biomes.class_of(12) == "snowy")
+assert(biomes.class_of("minecraft:badlands") == "badlands" and biomes.class_of(2) == "dry")
+assert(biomes.class_of("minecraft:no_such_biome") == "plains" and biomes.class_of(255) == "plains")
+assert(#biomes.CLASSES >= 15)
+-- Tinted variants: one id per (block state, class), the same sign as the block's id; untinted blocks stay.
+local grass, water, leaves = reg:state("minecraft:grass_block"), reg:state("minecraft:water"), reg:state("minecraft:oak_leaves")
+local sw = reg:tinted(grass, "swamp")
+assert(sw > 0 and sw ~= grass and reg:tinted(grass, "swamp") == sw and reg:tint(sw) == "swamp")
+assert(reg:name(sw) == "minecraft:grass_block" and reg:tint(grass) == nil)
+assert(reg:tinted(water, "warm_ocean") < 0 and reg:tinted(leaves, "jungle") > 0)
+assert(reg.tint_kind[reg:state("minecraft:spruce_leaves")] == nil, "spruce leaves keep their colour")
+assert(reg:tinted(reg:state("minecraft:stone"), "swamp") == reg:state("minecraft:stone"))
+local set = reg:ids_of("water")
+assert(set[water] and set[reg:tinted(water, "warm_ocean")])
+-- The tint scales the plains look: darker grass in a dark forest, plains unchanged.
+local top = blocks.definition("grass_block").top
+local dark = blocks.tint_color(top, "grass", "dark_forest")
+assert(dark[2] < top[2] and blocks.tint_color(top, "grass", "plains")[2] == top[2])
+-- Every class of every tinted kind and every connection shape builds.
+for _, cl in ipairs(biomes.CLASSES) do
+  for _, id in ipairs({grass, water, leaves, reg:state("minecraft:vine"), reg:state("minecraft:tall_grass")}) do
+    reg:tinted(id, cl)
+  end
+end
+for code = 0, 80 do
+  local v = {}
+  for k = 1, 4 do v[k] = ({"none", "low", "tall"})[(code // 3 ^ (k - 1)) % 3 + 1] end
+  reg:state("minecraft:stone_brick_wall", {north = v[1], east = v[2], south = v[3], west = v[4], up = code % 2 == 0 and "true" or "false"})
+  reg:state("minecraft:glass_pane", {north = tostring(v[1] ~= "none"), east = tostring(v[2] ~= "none"),
+                                     south = tostring(v[3] ~= "none"), west = tostring(v[4] ~= "none")})
+end
+reg:define(torte.voxel.grid{})
+print("ok")
+)LUA");
 }
