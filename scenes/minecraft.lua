@@ -4,7 +4,7 @@
 --
 --   torte scenes/minecraft.lua [world=<folder with r.X.Z.mca, or a world folder with region/>]
 --                              [box=x0,y0,z0,x1,y1,z1] [camera=ex,ey,ez,lx,ly,lz] [fov=40]
---                              [sun_elevation=35] [sun_azimuth=-50] [lights=64] [skip_bad_chunks=false] [sea=true]
+--                              [sun_elevation=35] [sun_azimuth=-50] [emission=true] [skip_bad_chunks=false] [sea=true]
 --                              [sea_radius=2e7]
 --                              [width=960] [height=540] [spp=16] [max_depth=6] [integrator=path|direct]
 --                              [output=out/minecraft.exr]
@@ -16,7 +16,8 @@
 -- sea: water at sea level (a surface at y = 62.875) around the loaded blocks, out to sea_radius blocks: far enough
 --   that no ray slips between its edge and the horizon (below which the sky is black; see docs/minecraft.md).
 -- Blocks take their biome's tint (grass, leaves, vines, water) and fences, walls and panes join their neighbours.
--- lights: emitting blocks (torches, lanterns, glowstone, lava, ...) become up to this many point lights.
+-- emission: emitting blocks (torches, lanterns, glowstone, lava, fire, ...) light the scene: their faces and
+--   flames are area lights of the voxel grid, sampled by power (docs/voxels.md). emission=false: unlit look only.
 -- When the world folder is missing the scene renders the empty sky (with a notice unless --quiet).
 local torte = require "torte"
 local world = require "minecraft.world"
@@ -27,7 +28,7 @@ local data_dir = script_dir .. "/../../shared/data/minecraft"
 
 local opt = torte.options{
   world = data_dir .. "/bluenbt-1.20.1-paper", box = "", camera = "", fov = 40, sun_elevation = 35,
-  sun_azimuth = -50, lights = 64, skip_bad_chunks = false, sea = true, sea_radius = 2e7,
+  sun_azimuth = -50, emission = true, skip_bad_chunks = false, sea = true, sea_radius = 2e7,
   width = 960, height = 540, spp = 16, max_depth = 6, integrator = "path", output = "out/minecraft.exr",
 }
 
@@ -78,7 +79,6 @@ if have_world then
   local sections = {}
   local stats = world.load{
     dir = dir, box = box, registry = reg, skip_bad_chunks = opt.skip_bad_chunks, progress = not torte.quiet,
-    emitters = opt.lights > 0, max_emitters = 100000,
     sink = function(cx, cy, cz, ids, non_air)
       sections[cx .. "," .. cy .. "," .. cz] = ids
       layer_fill[cy] = (layer_fill[cy] or 0) + non_air
@@ -93,7 +93,7 @@ if have_world then
     grid:set_chunk(tonumber(cx), tonumber(cy), tonumber(cz), ids)
   end
   sections = nil
-  reg:define(grid)
+  reg:define(grid, {emission = opt.emission})
   if not torte.quiet then
     local dvs = {}
     for dv, n in pairs(stats.data_versions) do dvs[#dvs + 1] = ("%d (%d chunks)"):format(dv, n) end
@@ -140,19 +140,6 @@ if have_world then
       quad(-R2, R, R2, R2)
       quad(-R2, -R, -R, R)
       quad(R, -R, R2, R)
-    end
-  end
-
-  -- Emitting blocks -> point lights (a regular subset when there are more than `lights`).
-  local em = stats.emitters
-  if #em > 0 and opt.lights > 0 then
-    local step = math.max(1, #em / opt.lights)
-    local scale = math.max(1, #em / opt.lights)
-    for i = 1, #em, step do
-      local e = em[math.floor(i)]
-      local c = reg:emission(e[4])
-      scene:add(torte.light.point{position = {e[1] + 0.5, e[2] + 0.7, e[3] + 0.5},
-                                  intensity = {c[1] * scale, c[2] * scale, c[3] * scale}})
     end
   end
 

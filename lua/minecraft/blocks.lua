@@ -510,14 +510,20 @@ end
 M.make_material = make_material
 
 -- Cell shapes in the unit cell [0, 1]^3 (a torte.group). `props` are the block-state properties.
-local function box(g, lo, hi, m)
-  g:add(torte.shape.cube{min = lo, max = hi, material = m})
+local function box(g, lo, hi, m, emission)
+  g:add(torte.shape.cube{min = lo, max = hi, material = m, emission = emission})
 end
 local FACING = {north = {0, -1}, south = {0, 1}, east = {1, 0}, west = {-1, 0}}
-local function make_shape(d, props, m)
+-- `emission` (a radiance, or nil): the parts drawn in the block's own material `m` glow (a torch's flame, not
+-- its stick); they are meshes, so they become area lights of the grid (voxel cell emitters must be meshes).
+local function make_shape(d, props, m, emission)
   local g = torte.group()
   local s = d.shape
   props = props or {}
+  local plain_box = box
+  local function box(g, lo, hi, mm)
+    plain_box(g, lo, hi, mm, mm == m and emission or nil)
+  end
   if s == "water" then
     g:add(torte.shape.polygon{points = {{0, 0.875, 0}, {0, 0.875, 1}, {1, 0.875, 1}, {1, 0.875, 0}}, material = m})
   elseif s == "slab_top" then
@@ -596,13 +602,17 @@ local function make_shape(d, props, m)
     box(g, {0.42, 0.5, 0.42}, {0.58, 0.66, 0.58}, m)
   elseif s == "flower" then
     box(g, {0.47, 0, 0.47}, {0.53, 0.55, 0.53}, torte.material.matte{color = linear({0.25, 0.5, 0.15})})
-    g:add(torte.shape.sphere{radius = 0.15, material = m, transform = torte.translate(0.5, 0.62, 0.5)})
+    if emission then  -- an emitting head is a small box: analytic shapes cannot emit inside voxel cells
+      box(g, {0.39, 0.51, 0.39}, {0.61, 0.73, 0.61}, m)
+    else
+      g:add(torte.shape.sphere{radius = 0.15, material = m, transform = torte.translate(0.5, 0.62, 0.5)})
+    end
   else  -- "cross": two crossed quads
     local h = 0.85
     g:add(torte.shape.polygon{points = {{0.15, 0, 0.15}, {0.85, 0, 0.85}, {0.85, h, 0.85}, {0.15, h, 0.15}},
-                              material = m})
+                              material = m, emission = emission})
     g:add(torte.shape.polygon{points = {{0.85, 0, 0.15}, {0.15, 0, 0.85}, {0.15, h, 0.85}, {0.85, h, 0.15}},
-                              material = m})
+                              material = m, emission = emission})
   end
   return g
 end
@@ -840,9 +850,11 @@ function Registry:name(id)
   return e and e.name
 end
 
--- Calls grid:define{...} for every id handed out. `options.emissive_cubes` (default true) gives emitting
--- cubes an emission if the grid accepts it.
-function Registry:define(grid)
+-- Calls grid:define{...} for every id handed out. Emitting blocks (`emit` in their definition: glowstone, lava,
+-- torches, fire, ...) light the scene: their exposed faces, or the glowing parts of their cell shapes, become
+-- the grid's area lights. `options.emission = false` draws them unlit (their look only).
+function Registry:define(grid, options)
+  local glow = not (options and options.emission == false)
   local ids = {}
   for id in pairs(self.entries) do ids[#ids + 1] = id end
   table.sort(ids)
@@ -861,6 +873,7 @@ function Registry:define(grid)
       if not tinted_defs[k] then tinted_defs[k] = M.tinted_definition(d, e.tint) end
       d = tinted_defs[k]
     end
+    local emission = glow and d.emit or nil
     if id > 0 then
       local axis = d.pillar and e.props and e.props.axis
       if (d.top or d.side or d.bottom) and (axis == "x" or axis == "z") then
@@ -868,16 +881,16 @@ function Registry:define(grid)
         local side, top, bottom = mat(d, d.side or d.color), mat(d, d.top or d.side), mat(d, d.bottom or d.side)
         local f = {["+y"] = side, ["-y"] = side, ["+x"] = side, ["-x"] = side, ["+z"] = side, ["-z"] = side}
         f["+" .. axis], f["-" .. axis] = top, bottom
-        grid:define{id = id, faces = f}
+        grid:define{id = id, faces = f, emission = emission}
       elseif d.top or d.side or d.bottom then
         local side = d.side or d.color
         grid:define{id = id, faces = {top = mat(d, d.top or side), bottom = mat(d, d.bottom or side),
-                                      side = mat(d, side)}}
+                                      side = mat(d, side)}, emission = emission}
       else
-        grid:define{id = id, material = mat(d, d.color)}
+        grid:define{id = id, material = mat(d, d.color), emission = emission}
       end
     else
-      grid:define{id = id, shape = make_shape(d, e.props, mat(d, d.color or d.side))}
+      grid:define{id = id, shape = make_shape(d, e.props, mat(d, d.color or d.side), emission)}
     end
   end
 end

@@ -1034,3 +1034,47 @@ reg:define(torte.voxel.grid{})
 print("ok")
 )LUA");
 }
+
+TEST_CASE("minecraft blocks: glowstone torches and fire light a dark scene as voxel area lights", "[minecraft]") {
+  McDir dir("emitters");
+  // A stone floor under a black sky with three emitting blocks: a cube (glowstone), a torch (an emitting flame box
+  // on a stick) and fire (two emitting crossed quads). Without emission the image is black; with it the floor
+  // around each emitter is lit and the lit floor shows the emitters' colours.
+  const std::string out = run_ok(dir, R"LUA(
+local blocks = require "minecraft.blocks"
+local function render(emission)
+  local reg = blocks.registry()
+  local grid = torte.voxel.grid{}
+  local stone = reg:state("minecraft:stone")
+  for x = -8, 8 do for z = -8, 8 do grid:set(x, 0, z, stone) end end
+  grid:set(-4, 1, 0, reg:state("minecraft:glowstone"))
+  grid:set(0, 1, 0, reg:state("minecraft:torch"))
+  grid:set(4, 1, 0, reg:state("minecraft:fire"))
+  reg:define(grid, {emission = emission})
+  local scene = torte.scene()
+  scene:add(grid:shape{})
+  local camera = torte.camera.perspective{eye = {0, 9, -9}, look_at = {0, 0, 0}, up = {0, 1, 0}, fov = 60}
+  return torte.render{scene = scene, camera = camera, width = 48, height = 48, spp = 16, max_depth = 3}
+end
+local lit, dark = render(true), render(false)
+local r, g, b = lit:mean()
+local r0, g0, b0 = dark:mean()
+assert(r0 == 0 and g0 == 0 and b0 == 0, "no emission: black")
+assert(r > 0.02 and g > 0.01, ("lit mean %g %g %g"):format(r, g, b))
+assert(r > b, "warm light")
+-- The floor just in front of each emitter (the camera looks along +z, so world +x is the image's left) is far
+-- brighter than the floor in the near corners.
+local function window(img, cx, cy)
+  local s = 0
+  for y = cy - 1, cy + 1 do for x = cx - 2, cx + 2 do local pr, pg, pb = img:pixel(x, y); s = s + pr + pg + pb end end
+  return s / 45
+end
+local corner = (window(lit, 3, 44) + window(lit, 44, 44)) / 2
+for _, e in ipairs({{"glowstone", 36, 22, 50}, {"torch", 24, 22, 5}, {"fire", 12, 22, 5}}) do
+  local v = window(lit, e[2], e[3])
+  assert(v > e[4] * corner and v > 0.002, ("%s: floor %g, corner %g"):format(e[1], v, corner))
+end
+print("ok")
+)LUA");
+  (void)out;
+}
