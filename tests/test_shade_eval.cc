@@ -15,29 +15,15 @@
 #include "core/rng.h"
 #include "render/shade.h"
 #include "shade_eval.h"
+#include "hwy_targets.h"
 #include "test_random.h"
 
 using namespace torte;
+using torte::test::for_each_hwy_target;
 using torte::test::random_direction;
 
 namespace {
 
-template <class F>
-void for_each_target(F&& f) {
-  struct Restore {
-    ~Restore() { hwy::SetSupportedTargetsForTest(0); }
-  } restore;
-  const int64_t targets = HWY_TARGETS & hwy::SupportedTargets();
-  REQUIRE(targets != 0);
-  for (int64_t rest = targets; rest != 0; rest &= rest - 1) {
-    const int64_t target = rest & -rest;
-    hwy::SetSupportedTargetsForTest(target);
-    const std::string name = hwy::TargetName(target);
-    INFO("target " << name);
-    REQUIRE(std::string(shade_eval_target_name()) == name);
-    f(name);
-  }
-}
 
 // A direction with the given z (unit length, random azimuth).
 Vec3f direction_with_z(Pcg32& rng, float z) {
@@ -114,7 +100,7 @@ const size_t kCounts[] = {20011, 1, 2, 3, 5, 7, 8, 9, 15, 16, 17, 31, 33};
 }  // namespace
 
 TEST_CASE("SIMD Lambert eval equals the scalar BSDF on every target", "[shade_eval][simd]") {
-  for_each_target([](const std::string&) {
+  for_each_hwy_target(&shade_eval_target_name, [](const std::string&) {
     for (const size_t n : kCounts) {
       Pcg32 rng(uint64_t(n) * 7 + 1);
       Dirs dirs;
@@ -140,7 +126,7 @@ TEST_CASE("SIMD Lambert eval equals the scalar BSDF on every target", "[shade_ev
 }
 
 TEST_CASE("SIMD Oren-Nayar eval equals the scalar BSDF on every target", "[shade_eval][simd]") {
-  for_each_target([](const std::string&) {
+  for_each_hwy_target(&shade_eval_target_name, [](const std::string&) {
     for (const size_t n : kCounts) {
       Pcg32 rng(uint64_t(n) * 11 + 3);
       Dirs dirs;
@@ -168,7 +154,7 @@ TEST_CASE("SIMD Oren-Nayar eval equals the scalar BSDF on every target", "[shade
 }
 
 TEST_CASE("SIMD GGX conductor eval equals the scalar BSDF on every target", "[shade_eval][simd]") {
-  for_each_target([](const std::string&) {
+  for_each_hwy_target(&shade_eval_target_name, [](const std::string&) {
     for (const size_t n : kCounts) {
       Pcg32 rng(uint64_t(n) * 13 + 5);
       Dirs dirs;
@@ -280,7 +266,7 @@ TEST_CASE("eval_batch of Lambert, Oren-Nayar and Conductor equals the scalar pha
   // The renderer uses the vector path for Oren-Nayar and Conductor only (Lambert: no gain, see shade_eval_batch.h).
   STATIC_REQUIRE(detail::HasEvalBatch<MaterialTraits<MaterialType::OrenNayar>>);
   STATIC_REQUIRE(detail::HasEvalBatch<MaterialTraits<MaterialType::Conductor>>);
-  for_each_target([](const std::string&) {
+  for_each_hwy_target(&shade_eval_target_name, [](const std::string&) {
     for (const size_t hits : {size_t(0), size_t(1), size_t(5), size_t(3001)}) {
       Pcg32 rng(hits + 17);
       std::string first;

@@ -8,42 +8,18 @@
 #include "voxel/voxel_traverse.h"
 #include "voxel_test_cells.h"
 
+namespace {
+float uniform(torte::Pcg32& rng) { return rng.next_float(); }
+}  // namespace
+
 using namespace torte;
+using torte::test::random_grid;
 using torte::test::SlabCells;
+using torte::test::terrain_grid;
 
 namespace {
 
 
-float uniform(Pcg32& rng) { return rng.next_float(); }
-
-VoxelGrid random_grid(uint64_t seed, int n, float fill, bool cells) {
-  VoxelGrid g;
-  Pcg32 rng(seed);
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        if (uniform(rng) >= fill) continue;
-        int16_t id = int16_t(1 + int(uniform(rng) * 7));
-        if (cells && uniform(rng) < 0.3f) id = uniform(rng) < 0.7f ? -1 : -2;
-        g.set(x - n / 3, y, z - n / 2, id);
-      }
-  return g;
-}
-
-// Terrain: a height field of stone under grass, caves, a few floating blocks and slabs on top.
-VoxelGrid terrain_grid(int n) {
-  VoxelGrid g;
-  for (int z = 0; z < n; ++z)
-    for (int x = 0; x < n; ++x) {
-      const int h = int(n / 3 + 6 * std::sin(x * 0.21) * std::cos(z * 0.17) + 3 * std::sin(x * 0.05 + z * 0.07));
-      for (int y = 0; y < h; ++y) {
-        const bool cave = std::sin(x * 0.3) * std::sin(y * 0.4) * std::sin(z * 0.35) > 0.6;
-        if (!cave) g.set(x, y, z, int16_t(y == h - 1 ? 2 : (y < h - 4 ? 1 : 3)));
-      }
-      if ((x * 7 + z * 13) % 29 == 0) g.set(x, h, z, -1);
-    }
-  return g;
-}
 
 Ray random_ray(Pcg32& rng, const VoxelTree& tree, bool inside) {
   const Bounds3f b = tree.bounds();

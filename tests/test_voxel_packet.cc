@@ -14,44 +14,19 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "hwy_targets.h"
 #include "test_random.h"
 #include "voxel/voxel_traverse.h"
 #include "voxel_packet.h"
 #include "voxel_test_cells.h"
 
 using namespace torte;
+using torte::test::for_each_hwy_target;
+using torte::test::random_grid;
 using torte::test::SlabCells;
+using torte::test::terrain_grid;
 
 namespace {
-
-VoxelGrid random_grid(uint64_t seed, int n, float fill, bool cells) {
-  VoxelGrid g;
-  Pcg32 rng(seed);
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        if (rng.next_float() >= fill) continue;
-        int16_t id = int16_t(1 + int(rng.next_float() * 7));
-        if (cells && rng.next_float() < 0.3f) id = rng.next_float() < 0.7f ? -1 : -2;
-        g.set(x - n / 3, y, z - n / 2, id);
-      }
-  return g;
-}
-
-VoxelGrid terrain_grid(int n) {
-  VoxelGrid g;
-  for (int z = 0; z < n; ++z)
-    for (int x = 0; x < n; ++x) {
-      const int h = int(n / 3 + 6 * std::sin(x * 0.21) * std::cos(z * 0.17) + 3 * std::sin(x * 0.05 + z * 0.07));
-      for (int y = 0; y < h; ++y) {
-        const bool cave = std::sin(x * 0.3) * std::sin(y * 0.4) * std::sin(z * 0.35) > 0.6;
-        if (!cave) g.set(x, y, z, int16_t(y == h - 1 ? 2 : (y < h - 4 ? 1 : 3)));
-      }
-      if ((x * 7 + z * 13) % 29 == 0) g.set(x, h, z, -1);
-      if ((x * 3 + z * 5) % 31 == 0) g.set(x, h + 1, z, -2);
-    }
-  return g;
-}
 
 bool same_float(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -184,23 +159,6 @@ std::vector<Ray> coherent_rays(const VoxelTree& tree, int tiles, uint64_t seed) 
   return rays;
 }
 
-// Calls f() once per Highway target compiled in and supported here, with dispatch forced to it.
-template <class F>
-void for_each_target(F&& f) {
-  struct Restore {
-    ~Restore() { hwy::SetSupportedTargetsForTest(0); }
-  } restore;
-  const int64_t targets = HWY_TARGETS & hwy::SupportedTargets();
-  REQUIRE(targets != 0);
-  for (int64_t rest = targets; rest != 0; rest &= rest - 1) {
-    const int64_t target = rest & -rest;
-    hwy::SetSupportedTargetsForTest(target);
-    const std::string name = hwy::TargetName(target);
-    INFO("target " << name);
-    REQUIRE(std::string(voxel_packet_target_name()) == name);
-    f(name);
-  }
-}
 
 }  // namespace
 
@@ -214,7 +172,7 @@ TEST_CASE("voxel packets equal single rays on random and coherent rays, every ta
     random[k] = random_rays(trees[k], 20000, 10 + uint64_t(k));
     coherent[k] = coherent_rays(trees[k], 1500, 20 + uint64_t(k));
   }
-  for_each_target([&](const std::string& name) {
+  for_each_hwy_target(&voxel_packet_target_name, [&](const std::string& name) {
     Stats rs, cs;
     for (int k = 0; k < 3; ++k) {
       compare(trees[k], random[k], &rs, "random");
@@ -269,7 +227,7 @@ TEST_CASE("voxel packets: mixed direction signs, axis-parallel rays and NaN rays
       rays.push_back(r);
     }
   }
-  for_each_target([&](const std::string& name) {
+  for_each_hwy_target(&voxel_packet_target_name, [&](const std::string& name) {
     Stats st;
     compare(tree, rays, &st, "mixed");
     std::fprintf(stderr, "voxel packets %s: mixed/NaN %ld rays (%ld hits) %ld mismatches\n", name.c_str(), st.rays,

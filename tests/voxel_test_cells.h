@@ -1,9 +1,14 @@
-// A unit-cell handler shared by the voxel tests and the voxel benchmark: id -1 is a bottom slab, other negative
-// ids are empty (the traversal's cell callback interface, voxel/voxel_traverse.h).
+// Shared by the voxel tests and the voxel benchmark: a unit-cell handler (id -1 is a bottom slab, other negative
+// ids are empty; the traversal's cell callback interface, voxel/voxel_traverse.h) and test grids.
 #pragma once
 #include <algorithm>
 #include <utility>
 
+#include <cmath>
+#include <cstdint>
+
+#include "core/rng.h"
+#include "voxel/voxel_grid.h"
 #include "voxel/voxel_traverse.h"
 
 namespace torte::test {
@@ -39,5 +44,35 @@ struct SlabCells {
     return id == -1 && slab(r, &t);
   }
 };
+
+// Random ids 1..7 in an n^3 box with probability `fill`; with `cells`, 30 % of them are cell ids -1 or -2.
+inline VoxelGrid random_grid(uint64_t seed, int n, float fill, bool cells) {
+  VoxelGrid g;
+  Pcg32 rng(seed);
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        if (rng.next_float() >= fill) continue;
+        int16_t id = int16_t(1 + int(rng.next_float() * 7));
+        if (cells && rng.next_float() < 0.3f) id = rng.next_float() < 0.7f ? -1 : -2;
+        g.set(x - n / 3, y, z - n / 2, id);
+      }
+  return g;
+}
+
+// Terrain: a height field of stone under grass, caves, a few floating blocks and slabs on top.
+inline VoxelGrid terrain_grid(int n) {
+  VoxelGrid g;
+  for (int z = 0; z < n; ++z)
+    for (int x = 0; x < n; ++x) {
+      const int h = int(n / 3 + 6 * std::sin(x * 0.21) * std::cos(z * 0.17) + 3 * std::sin(x * 0.05 + z * 0.07));
+      for (int y = 0; y < h; ++y) {
+        const bool cave = std::sin(x * 0.3) * std::sin(y * 0.4) * std::sin(z * 0.35) > 0.6;
+        if (!cave) g.set(x, y, z, int16_t(y == h - 1 ? 2 : (y < h - 4 ? 1 : 3)));
+      }
+      if ((x * 7 + z * 13) % 29 == 0) g.set(x, h, z, -1);
+    }
+  return g;
+}
 
 }  // namespace torte::test
