@@ -47,6 +47,14 @@ inline CameraDesc furnace_camera() {
   return c;
 }
 
+// Mean colour of the pixels [x0, x1) x [y0, y1).
+inline Rgb tile_mean(const Image& img, int x0, int y0, int x1, int y1) {
+  Rgb sum(0);
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) sum += img.at(x, y);
+  return sum * (1.0f / float((x1 - x0) * (y1 - y0)));
+}
+
 // The image must not depend on the thread count (bitwise), and must depend on the seed.
 inline void check_thread_determinism(const Scene& scene, RenderSettings s) {
   Image one, two;

@@ -14,6 +14,7 @@
 #include "test_random.h"
 
 using namespace torte;
+using torte::test::tile_mean;
 using torte::test::matte;
 
 namespace {
@@ -67,13 +68,6 @@ const Light* patches_light(const Scene& scene) {
   for (const Light& l : scene.lights)
     if (l.kind == LightKind::Patches) return &l;
   return nullptr;
-}
-
-Rgb tile_mean(const Image& img, int x0, int y0, int x1, int y1) {
-  Rgb sum(0);
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) sum += img.at(x, y);
-  return sum * (1.0f / float((x1 - x0) * (y1 - y0)));
 }
 
 }  // namespace

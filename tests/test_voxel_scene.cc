@@ -7,8 +7,10 @@
 #include "core/rng.h"
 #include "render/render.h"
 #include "scene/builder.h"
+#include "scene_helpers.h"
 
 using namespace torte;
+using torte::test::tile_mean;
 
 namespace {
 
@@ -41,13 +43,6 @@ ShapeDesc voxel_desc(std::shared_ptr<const VoxelShape> v, const Transform& t) {
   s.voxels = std::move(v);
   s.transform = t;
   return s;
-}
-
-Rgb tile_mean(const Image& img, int x0, int y0, int x1, int y1) {
-  Rgb sum(0);
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) sum += img.at(x, y);
-  return sum * (1.0f / float((x1 - x0) * (y1 - y0)));
 }
 
 // A small world with cubes of three ids and slab cells (id -1).

@@ -20,6 +20,26 @@ float disk_origin(const Scene& scene, Vec3f dir, Vec2f u, Vec3f* origin) {
   return kPi * r * r;
 }
 
+// A diffuse emitter's point q (normal n of its emitting side, density pdf_area) leaves light in a
+// cosine-weighted direction; two-sided emitters pick their side with uc. Le cos / (pdf_area * cos/pi * side_pdf)
+// = Le pi / (pdf_area side_pdf).
+bool emit_diffuse(Vec3f q, Vec3f n, float pdf_area, bool two_sided, Rgb radiance, Vec2f u_dir, float uc,
+                  EmissionSample* s) {
+  if (!(pdf_area > 0) || !std::isfinite(pdf_area)) return false;
+  float side_pdf = 1;
+  if (two_sided) {
+    side_pdf = 0.5f;
+    if (uc < 0.5f) n = -n;
+  }
+  const Vec3f local = sample_cosine_hemisphere(u_dir);
+  if (!(local.z > 0)) return false;
+  s->origin = q;
+  s->normal = n;
+  s->dir = normalize(Frame::from_z(n).to_world(local));
+  s->weight = radiance * (kPi / (pdf_area * side_pdf));
+  return !s->weight.is_black();
+}
+
 }  // namespace
 
 bool sample_emission(const Scene& scene, const Light& light, Vec2f u_pos, Vec2f u_dir, float uc,
@@ -69,39 +89,13 @@ bool sample_emission(const Scene& scene, const Light& light, Vec2f u_pos, Vec2f 
     }
     case LightKind::Patches: {
       const PatchPoint pp = light.patches->sample(u_pos);
-      if (!(pp.pdf_area > 0) || !std::isfinite(pp.pdf_area)) return false;
-      Vec3f n = pp.n;
-      float side_pdf = 1;
-      if (pp.two_sided) {
-        side_pdf = 0.5f;
-        if (uc < 0.5f) n = -n;
-      }
-      const Vec3f local = sample_cosine_hemisphere(u_dir);
-      if (!(local.z > 0)) return false;
-      s->origin = pp.q;
-      s->normal = n;
-      s->dir = normalize(Frame::from_z(n).to_world(local));
-      s->weight = pp.radiance * (kPi / (pp.pdf_area * side_pdf));
-      return !s->weight.is_black();
+      return emit_diffuse(pp.q, pp.n, pp.pdf_area, pp.two_sided, pp.radiance, u_dir, uc, s);
     }
     case LightKind::Area: {
       Vec3f q, n;
       float pdf_area;
       sample_area_light_point(scene, light, u_pos, &q, &n, &pdf_area);
-      if (!(pdf_area > 0) || !std::isfinite(pdf_area)) return false;
-      float side_pdf = 1;
-      if (light.two_sided) {
-        side_pdf = 0.5f;
-        if (uc < 0.5f) n = -n;
-      }
-      // Cosine-weighted direction: Le cos / (pdf_area * cos/pi * side_pdf) = Le pi / (pdf_area side_pdf).
-      const Vec3f local = sample_cosine_hemisphere(u_dir);
-      if (!(local.z > 0)) return false;
-      s->origin = q;
-      s->normal = n;
-      s->dir = normalize(Frame::from_z(n).to_world(local));
-      s->weight = light.radiance * (kPi / (pdf_area * side_pdf));
-      return !s->weight.is_black();
+      return emit_diffuse(q, n, pdf_area, light.two_sided, light.radiance, u_dir, uc, s);
     }
   }
   return false;
