@@ -149,8 +149,13 @@ void print_scene_summary(const Scene& scene) {
   if (!scene.instances.empty())
     std::fprintf(stderr, " + %zu instances of %zu groups (%llu primitives placed)", scene.instances.size(),
                  scene.prototypes.size(), static_cast<unsigned long long>(instanced));
-  std::fprintf(stderr, "; %zu lights; memory: geometry %.1f MB, acceleration %.1f MB\n", scene.lights.size(),
-               double(scene.geometry_bytes()) * 1e-6, double(scene.accel_bytes()) * 1e-6);
+  std::fprintf(stderr, "; %zu lights", scene.lights.size());
+  size_t patches = 0;  // emitting voxel faces and cell triangles (one light per grid)
+  for (const Light& l : scene.lights)
+    if (l.kind == LightKind::Patches) patches += l.patches->size();
+  if (patches > 0) std::fprintf(stderr, " (%zu emitting voxel patches)", patches);
+  std::fprintf(stderr, "; memory: geometry %.1f MB, acceleration %.1f MB\n", double(scene.geometry_bytes()) * 1e-6,
+               double(scene.accel_bytes()) * 1e-6);
 }
 
 int l_render(lua_State* L) {
