@@ -13,9 +13,10 @@
 // reference (coherent wins for camera rays, incoherent for the shadow rays, whose origins spread); a '#' line
 // gives both. --embree-context coherent|incoherent pins one. Single rays use the default (INCOHERENT) context.
 //   build           bounds + SAH build + collapse + leaves  vs rtcCommitScene at RTC_BUILD_QUALITY_MEDIUM
-// Times are medians of --reps repetitions, torte and Embree interleaved so that load from other processes hits
-// both alike. One thread: traversal is timed in CPU time of the calling thread, builds in CPU time of the process
-// (so time the machine's other processes take is not counted; Embree and torte are both limited to one thread). With
+// Times are medians of --reps repetitions (--stat min: the fastest one), torte and Embree interleaved so that
+// load from other processes hits both alike. One thread: traversal is timed in CPU time of the calling thread,
+// builds in CPU time of the process (so time the machine's other processes take is not counted; Embree and torte
+// are both limited to one thread). With
 // --threads T > 1 everything is wall time, rays are split into chunks of 4096 over a TBB arena of T threads
 // (torte and Embree alike) and both builders are limited to T threads.
 //
@@ -58,6 +59,8 @@ struct Options {
   int packet = 16;
   int width = kDefaultBvhWidth;
   std::string embree_context = "best";  // Embree's packets: best of both, or "coherent" / "incoherent"
+  std::string workloads;                // comma-separated subset of the workloads ("" = all)
+  bool min_time = false;                // --stat min: fastest repetition instead of the median
 };
 Options g_opt;
 
@@ -74,6 +77,7 @@ double cpu_now(clockid_t clock) {
 double build_clock() { return g_opt.threads == 1 ? cpu_now(CLOCK_PROCESS_CPUTIME_ID) : wall_now(); }
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
+  if (g_opt.min_time) return v.front();
   const size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
@@ -228,9 +232,20 @@ void report_check(const char* workload, const Check& vs_embree, const Check& vs_
 
 enum class Kind { Closest, Any };
 
+// --workloads: whether `name` is in the comma-separated list (every workload when there is none).
+bool workload_selected(const char* name) {
+  if (g_opt.workloads.empty()) return true;
+  std::string list = g_opt.workloads, key = name;
+  list += ',', key += ',';
+  for (size_t at = list.find(key); at != std::string::npos; at = list.find(key, at + 1))
+    if (at == 0 || list[at - 1] == ',') return true;
+  return false;
+}
+
 template <int N>
 void compare_workload(const char* name, const BenchScene& s, const Workload& w, const TorteAccel<N>& a,
                       RTCScene scene, Kind kind, bool packets) {
+  if (!workload_selected(name)) return;
   const size_t n = w.rays.size();
   std::vector<Hit> hits(kind == Kind::Closest ? n : 0);
   std::vector<float> torte_t(kind == Kind::Closest ? n : 0), embree_t(kind == Kind::Closest ? n : 0);
@@ -339,10 +354,13 @@ void run_scene(RTCDevice dev, const BenchScene& s) {
 
 int usage() {
   std::fprintf(stderr,
-               "usage: embree-compare [--threads T] [--reps R] [--full] [--scenes a,b,...] [--packet 8|16] "
+               "usage: embree-compare [--threads T] [--reps R] [--stat median|min] [--workloads a,b,...] [--full] "
+               "[--scenes a,b,...] [--packet 8|16] "
                "[--width 4|8] [--embree-context best|coherent|incoherent]\n"
                "  --threads T  traversal and build threads (default 1)\n"
                "  --reps R     repetitions per measurement; medians are printed (default 5)\n"
+               "  --stat min   print the fastest repetition instead of the median (A/B runs on a loaded machine)\n"
+               "  --workloads  subset of primary,primary-single,shadow,shadow-single,diffuse (builds always run)\n"
                "  --full       add the 4 M and 16 M triangle bunnies (or TORTE_BENCH_FULL=1)\n"
                "  --scenes     subset of bunny,dragon,bunny-1m,bunny-4m,bunny-16m (or TORTE_BENCH_SCENES)\n"
                "  --packet     torte's packet size against rtcIntersect16 / rtcOccluded16 (default 16)\n"
@@ -361,6 +379,12 @@ int main(int argc, char** argv) {
     auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
     if (a == "--full") {
       set_full_run(true);
+    } else if (a == "--stat" || a == "--workloads") {
+      const char* v = value();
+      if (!v) return usage();
+      if (a == "--workloads") g_opt.workloads = v;
+      else if (std::string(v) == "min") g_opt.min_time = true;
+      else if (std::string(v) != "median") return usage();
     } else if (a == "--embree-context") {
       const char* v = value();
       if (!v) return usage();
@@ -395,9 +419,9 @@ int main(int argc, char** argv) {
   rtcSetDeviceErrorFunction(dev, embree_error, nullptr);
   rtcSetDeviceMemoryMonitorFunction(dev, memory_monitor, nullptr);
   std::printf("# embree-compare: Embree %s, torte traversal target %s, torte wide%d, torte packet %d, Embree packet "
-              "context %s, threads %d, median of %d, %s\n",
+              "context %s, threads %d, %s of %d, %s\n",
               RTC_VERSION_STRING, traversal_target_name(), g_opt.width, g_opt.packet,
-              g_opt.embree_context.c_str(), g_opt.threads, g_opt.reps,
+              g_opt.embree_context.c_str(), g_opt.threads, g_opt.min_time ? "minimum" : "median", g_opt.reps,
               g_opt.threads == 1 ? "traversal in thread CPU time, builds in process CPU time" : "wall time");
   std::fflush(stdout);
   try {

@@ -304,7 +304,7 @@ TorteAccel<N> build_torte(const TriangleMesh& mesh, const BvhBuildOptions& optio
   TorteAccel<N> a;
   const std::vector<Bounds3f> bounds = triangle_bounds(mesh);
   a.bvh = build_wide_bvh<N>(bounds, options);
-  a.leaves = make_triangle_leaves(a.bvh.prim_indices, mesh, options.parallel);
+  a.leaves = make_triangle_leaves(a.bvh, mesh, options.parallel);
   return a;
 }
 template TorteAccel<4> build_torte<4>(const TriangleMesh&, const BvhBuildOptions&);

@@ -87,7 +87,9 @@ struct WatertightLanes {
 // so every lane takes the decision the scalar code takes. Inputs are the triangle's vertices minus the ray origin,
 // already permuted to the ray's (kx, ky, kz) axes, and the ray's shear (sx, sy, sz). Only `candidates` lanes can
 // hit or be reported as zero lanes.
-template <class D, class V = hn::Vec<D>>
+// kSkipMisses: return before the division when no lane can hit (pays in packets, where most triangle tests
+// miss; single rays test a leaf's triangles at once and lose more to the unpredictable branch).
+template <bool kSkipMisses = false, class D, class V = hn::Vec<D>>
 HWY_INLINE WatertightLanes<D> WatertightTest(D d, V akx, V aky, V akz, V bkx, V bky, V bkz, V ckx, V cky, V ckz,
                                              V sx, V sy, V sz, V t_max, hn::Mask<D> candidates) {
   using hn::Add;
@@ -107,16 +109,22 @@ HWY_INLINE WatertightLanes<D> WatertightTest(D d, V akx, V aky, V akz, V bkx, V 
   const auto any_neg = hn::Or(hn::Or(hn::Lt(u, zero), hn::Lt(v, zero)), hn::Lt(w, zero));
   const auto any_pos = hn::Or(hn::Or(hn::Gt(u, zero), hn::Gt(v, zero)), hn::Gt(w, zero));
   const V det = Add(Add(u, v), w);
+  WatertightLanes<D> r;
+  r.zero = hn::And(candidates, zero_edge);
+  // Inside unless the edge functions have mixed signs; det != 0.
+  auto hit = hn::AndNot(hn::And(any_neg, any_pos), hn::Ne(det, zero));
+  hit = hn::And(hn::AndNot(zero_edge, candidates), hit);
+  if (kSkipMisses && hn::AllFalse(d, hit)) {
+    r.hit = hit;
+    r.t = r.b1 = r.b2 = zero;
+    return r;
+  }
   const V az = Mul(sz, akz), bz = Mul(sz, bkz), cz = Mul(sz, ckz);
   const V t_scaled = Add(Add(Mul(u, az), Mul(v, bz)), Mul(w, cz));
   const V inv_det = hn::Div(hn::Set(d, 1.0f), det);  // exact division, as 1.0f / det (no approximate reciprocal)
   const V t = Mul(t_scaled, inv_det);
-  // Inside unless the edge functions have mixed signs; det != 0; 0 < t < t_max (false for NaN).
-  auto hit = hn::AndNot(hn::And(any_neg, any_pos), hn::Ne(det, zero));
-  hit = hn::And(hit, hn::And(hn::Gt(t, zero), hn::Lt(t, t_max)));
-  WatertightLanes<D> r;
-  r.zero = hn::And(candidates, zero_edge);
-  r.hit = hn::And(hn::AndNot(zero_edge, candidates), hit);
+  // 0 < t < t_max (false for NaN).
+  r.hit = hn::And(hit, hn::And(hn::Gt(t, zero), hn::Lt(t, t_max)));
   r.t = t;
   r.b1 = Mul(v, inv_det);
   r.b2 = Mul(w, inv_det);

@@ -5,8 +5,11 @@
 // Each stack entry carries the lanes that hit its box, so lane groups without such rays are skipped below it.
 // Leaves: one triangle at a time against all lanes, with the watertight test of traverse-inl.h.
 // In a same-octant packet the node's children are first tested against the packet's interval of origins / inverse
-// directions (one vector test for all N children, Reshetov et al. 2005) and only the survivors lane by lane; the
-// interval's far bound is the largest t_max of the packet, which closest hit lowers as its lanes find hits.
+// directions (one vector test for all N children, Reshetov et al. 2005); the interval's far bound is the largest
+// t_max of the packet, which closest hit lowers as its lanes find hits. Closest hit then takes the interval's
+// verdict for interior children (they inherit the node's lanes and are ordered by the interval's entry bound) and
+// tests only leaf children lane by lane; any hit tests the survivors lane by lane (it needs live-lane counts for
+// the single-ray fallback). The leaf test skips the division when no lane is inside the triangle.
 // Any hit only: children are visited in any order (no entry distances computed); and once an entry holds few live
 // rays (kSingleThreshold) its subtree is traced one ray at a time with the single-ray kernel's tests (Benthin et
 // al. 2012).
@@ -201,7 +204,7 @@ HWY_INLINE uint32_t GroupMask(D d) {
 // correctly rounded (hence monotonic) operations, so they lie between the corner products computed here; a child
 // rejected here fails every lane's own test.
 template <int N, size_t P>
-HWY_INLINE uint32_t IntervalChildren(const WideNode<N>& node, const Packet<P>& p) {
+HWY_INLINE uint32_t IntervalChildren(const WideNode<N>& node, const Packet<P>& p, float* t_lo = nullptr) {
   const hn::CappedTag<float, N> d;
   const size_t L = hn::Lanes(d);
   const float* nf = node_floats(node);
@@ -223,8 +226,23 @@ HWY_INLINE uint32_t IntervalChildren(const WideNode<N>& node, const Packet<P>& p
                                   round);
       t0 = hn::Max(t0, near_lo), t1 = hn::Min(t1, far_hi);
     }
+    if (t_lo) hn::StoreU(t0, d, t_lo + g);
     bits |= MaskBits(d, hn::Le(t0, t1)) << g;
   }
+  return bits;
+}
+
+// Occupied child slots, and leaf children, as bits.
+template <int N>
+HWY_INLINE uint32_t NonEmptyChildren(const WideNode<N>& node) {
+  uint32_t bits = 0;
+  for (int c = 0; c < N; ++c) bits |= (node.child[c] != kEmptyChild ? 1u : 0u) << c;
+  return bits;
+}
+template <int N>
+HWY_INLINE uint32_t LeafChildren(const WideNode<N>& node) {
+  uint32_t bits = 0;
+  for (int c = 0; c < N; ++c) bits |= (node.leaf_count[c] != 0 ? 1u : 0u) << c;
   return bits;
 }
 
@@ -289,10 +307,10 @@ HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, 
 
 // Lanes whose edge functions hit exactly 0 against triangle i: decided by the scalar test (in double).
 template <bool kAny, size_t P, class D>
-HWY_NOINLINE void RetestZeroLanes(D d, hn::Mask<D> zero, size_t g, const TriangleLeaves& tris, uint32_t i,
-                                  Packet<P>& p) {
-  const Vec3f p0{tris.v0x[i], tris.v0y[i], tris.v0z[i]}, p1{tris.v1x[i], tris.v1y[i], tris.v1z[i]},
-      p2{tris.v2x[i], tris.v2y[i], tris.v2z[i]};
+HWY_NOINLINE void RetestZeroLanes(D d, hn::Mask<D> zero, size_t g, const TriangleLeaves& tris, uint32_t first,
+                                  uint32_t count, uint32_t i, Packet<P>& p) {
+  const Vec3f p0 = tris.vertex(first, count, i, 0), p1 = tris.vertex(first, count, i, 1),
+              p2 = tris.vertex(first, count, i, 2);
   for (uint32_t bits = MaskBits(d, zero); bits != 0; bits &= bits - 1) {
     const size_t lane = g + size_t(__builtin_ctz(bits));
     TriangleHit th;
@@ -326,10 +344,12 @@ HWY_INLINE bool PacketLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t 
   const size_t L = hn::Lanes(d);
   const auto zero = hn::Zero(d);
   bool found = false;
+  const float* const base = tris.data.data() + 9 * size_t(first);
   for (uint32_t i = first; i < first + count; ++i) {
-    const float v[3][3] = {{tris.v0x[i], tris.v0y[i], tris.v0z[i]},
-                           {tris.v1x[i], tris.v1y[i], tris.v1z[i]},
-                           {tris.v2x[i], tris.v2y[i], tris.v2z[i]}};
+    const float* const t = base + (i - first);
+    const float v[3][3] = {{t[0], t[count], t[2 * count]},
+                           {t[3 * count], t[4 * count], t[5 * count]},
+                           {t[6 * count], t[7 * count], t[8 * count]}};
     for (size_t g = 0; g < P; g += L) {
       if (((lanes >> g) & GroupMask(d)) == 0) continue;
       const auto t_max = hn::Load(d, p.t_max + g);
@@ -348,7 +368,7 @@ HWY_INLINE bool PacketLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t 
           a[k][2] = hn::Sub(PermutedCoord(d, p, 2, g, v[k][0], v[k][1], v[k][2]), okz);
         }
       }
-      const auto r = WatertightTest(d, a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2], a[2][0], a[2][1],
+      const auto r = WatertightTest<true>(d, a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2], a[2][0], a[2][1],
                                     a[2][2], hn::Load(d, p.sx + g), hn::Load(d, p.sy + g), hn::Load(d, p.sz + g),
                                     t_max, hn::Gt(t_max, zero));  // live lanes have t_max > 0
       if (!hn::AllFalse(d, r.hit)) {
@@ -364,7 +384,7 @@ HWY_INLINE bool PacketLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t 
         }
       }
       if (HWY_UNLIKELY(!hn::AllFalse(d, r.zero))) {
-        RetestZeroLanes<kAny>(d, r.zero, g, tris, i, p);
+        RetestZeroLanes<kAny>(d, r.zero, g, tris, first, count, i, p);
         found = true;  // maybe a hit: the caller re-checks the lanes
       }
     }
@@ -437,10 +457,32 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
     } else {
       const WideNode<N>& node = bvh.nodes[ref];
       uint32_t child_lanes[N];
-      float t_near[N];
-      uint32_t cand = ~0u;
-      if (p.same_octant) cand = IntervalChildren(node, p);
-      uint32_t bits = cand == 0 ? 0 : PacketChildren<kAny>(node, p, lanes, cand, child_lanes, t_near);
+      alignas(64) float t_near[N];
+      uint32_t bits;
+      if (!kAny && p.same_octant) {
+        // Closest hit, one octant: the interval test alone decides the interior children, which inherit the
+        // node's lanes and are ordered by the interval's entry bound (a lower bound of every lane's entry
+        // distance, so the pop test below stays exact). Only leaf children get the per-lane test, so a leaf's
+        // triangles are tested against the lanes that reach its box (and lane groups without any are skipped).
+        const uint32_t cand = IntervalChildren(node, p, t_near) & NonEmptyChildren(node);
+        const uint32_t leaf_cand = cand & LeafChildren(node);
+        bits = cand & ~leaf_cand;
+        for (uint32_t b = bits; b != 0; b &= b - 1) child_lanes[__builtin_ctz(b)] = lanes;
+        if (leaf_cand != 0) {
+          uint32_t leaf_lanes[N];
+          float leaf_near[N];
+          const uint32_t leaf_bits = PacketChildren<kAny>(node, p, lanes, leaf_cand, leaf_lanes, leaf_near);
+          for (uint32_t b = leaf_bits; b != 0; b &= b - 1) {
+            const uint32_t c = uint32_t(__builtin_ctz(b));
+            child_lanes[c] = leaf_lanes[c], t_near[c] = leaf_near[c];
+          }
+          bits |= leaf_bits;
+        }
+      } else {
+        uint32_t cand = ~0u;
+        if (p.same_octant) cand = IntervalChildren(node, p);
+        bits = cand == 0 ? 0 : PacketChildren<kAny>(node, p, lanes, cand, child_lanes, t_near);
+      }
       if (bits != 0) {
         if constexpr (kAny) {
           // Any order will do: descend into the first hit child, push the others.

@@ -4,8 +4,10 @@
 // Nodes: lanes = children. One slab test per axis covers all N children (CappedTag<float, N>; targets narrower
 // than N loop over lane groups); near/far planes are picked per ray by the direction's signs, so the node test is
 // the same arithmetic as SlabRay::hits in accel/bvh2.h. Hit children are sorted far to near and pushed, and the
-// nearest is visited next; popped entries starting beyond the closest hit so far are skipped.
-// Leaves: lanes = triangles, loaded straight from the SoA leaf arrays (LoadU + FirstN), with the watertight test
+// nearest is visited next; popped entries starting beyond the closest hit so far are skipped. The second nearest
+// (the likeliest next pop) is prefetched when pushed: about +4 % on diffuse rays (2026-11-22; prefetching every
+// pushed child, or the next stack entry at each pop, measured no better).
+// Leaves: lanes = triangles, loaded straight from the leaf's SoA runs (LoadU + FirstN), with the watertight test
 // of traverse-inl.h; lanes where an edge function is exactly 0 are re-tested by the scalar intersect_triangle,
 // which falls back to double precision there.
 
@@ -41,7 +43,8 @@ struct SingleRay {
   WatertightRay wr;              // permutation kx, ky, kz and shear sx, sy, sz, exactly as the scalar test has them
   float o[3], inv_d[3];
   uint32_t near_off[3], far_off[3];  // per axis, offset of the entry / exit plane array in a node (node_floats)
-  const float* verts[9];             // leaf arrays v0[kx], v0[ky], v0[kz], v1[kx], ..., v2[kz]
+  const float* leaf_data;            // TriangleLeaves::data
+  uint32_t runs[9];                  // leaf runs (wide_bvh.h) of v0[kx], v0[ky], v0[kz], v1[kx], ..., v2[kz]
 
   template <int N>
   SingleRay(const Ray& ray, const TriangleLeaves& tris, std::integral_constant<int, N>) : wr(ray) {
@@ -52,13 +55,11 @@ struct SingleRay {
       near_off[a] = bound_offset<N>(a, neg);
       far_off[a] = bound_offset<N>(a, !neg);
     }
-    const float* const v[3][3] = {{tris.v0x.data(), tris.v0y.data(), tris.v0z.data()},
-                                  {tris.v1x.data(), tris.v1y.data(), tris.v1z.data()},
-                                  {tris.v2x.data(), tris.v2y.data(), tris.v2z.data()}};
+    leaf_data = tris.data.data();
     for (int k = 0; k < 3; ++k) {
-      verts[3 * k + 0] = v[k][wr.kx];
-      verts[3 * k + 1] = v[k][wr.ky];
-      verts[3 * k + 2] = v[k][wr.kz];
+      runs[3 * k + 0] = uint32_t(3 * k + wr.kx);
+      runs[3 * k + 1] = uint32_t(3 * k + wr.ky);
+      runs[3 * k + 2] = uint32_t(3 * k + wr.kz);
     }
   }
 };
@@ -93,14 +94,14 @@ HWY_INLINE uint32_t IntersectChildren(const WideNode<N>& node, const SingleRay& 
 
 // Lanes of a leaf group whose edge functions hit exactly 0: the scalar test decides them (in double).
 template <bool kAny, class D>
-HWY_NOINLINE bool RetestZeroLanesSingle(D d, hn::Mask<D> zero, const TriangleLeaves& tris, size_t at,
-                                  const WatertightRay& wr, float* t_max, Hit* hit) {
+HWY_NOINLINE bool RetestZeroLanesSingle(D d, hn::Mask<D> zero, const TriangleLeaves& tris, uint32_t first,
+                                        uint32_t count, size_t at, const WatertightRay& wr, float* t_max, Hit* hit) {
   bool found = false;
   for (uint32_t bits = MaskBits(d, zero); bits != 0; bits &= bits - 1) {
-    const size_t i = at + size_t(__builtin_ctz(bits));
+    const uint32_t i = uint32_t(at + size_t(__builtin_ctz(bits)));
     TriangleHit th;
-    if (!intersect_triangle(wr, *t_max, {tris.v0x[i], tris.v0y[i], tris.v0z[i]},
-                            {tris.v1x[i], tris.v1y[i], tris.v1z[i]}, {tris.v2x[i], tris.v2y[i], tris.v2z[i]}, &th))
+    if (!intersect_triangle(wr, *t_max, tris.vertex(first, count, i, 0), tris.vertex(first, count, i, 1),
+                            tris.vertex(first, count, i, 2), &th))
       continue;
     if constexpr (kAny) return true;
     *t_max = th.t;
@@ -121,16 +122,18 @@ HWY_INLINE bool IntersectLeaf(const TriangleLeaves& tris, uint32_t first, uint32
   const auto okx = hn::Set(d, wr.o[wr.kx]), oky = hn::Set(d, wr.o[wr.ky]), okz = hn::Set(d, wr.o[wr.kz]);
   const auto sx = hn::Set(d, wr.sx), sy = hn::Set(d, wr.sy), sz = hn::Set(d, wr.sz);
   bool found = false;
+  const float* const base = r.leaf_data + 9 * size_t(first);
+  const float* v[9];
+  for (int j = 0; j < 9; ++j) v[j] = base + size_t(r.runs[j]) * count;
   for (uint32_t i = 0; i < count; i += uint32_t(L)) {
-    // Loading L lanes from any position inside a leaf stays within the arrays' kLeafPadding tail.
+    // Loading L lanes from any position inside a leaf's run stays within the leaf data and its kLeafPadding tail.
     const size_t at = size_t(first) + i;
-    const auto* v = r.verts;
     const auto lanes = WatertightTest(
-        d, hn::Sub(hn::LoadU(d, v[0] + at), okx), hn::Sub(hn::LoadU(d, v[1] + at), oky),
-        hn::Sub(hn::LoadU(d, v[2] + at), okz), hn::Sub(hn::LoadU(d, v[3] + at), okx),
-        hn::Sub(hn::LoadU(d, v[4] + at), oky), hn::Sub(hn::LoadU(d, v[5] + at), okz),
-        hn::Sub(hn::LoadU(d, v[6] + at), okx), hn::Sub(hn::LoadU(d, v[7] + at), oky),
-        hn::Sub(hn::LoadU(d, v[8] + at), okz), sx, sy, sz, hn::Set(d, *t_max), hn::FirstN(d, count - i));
+        d, hn::Sub(hn::LoadU(d, v[0] + i), okx), hn::Sub(hn::LoadU(d, v[1] + i), oky),
+        hn::Sub(hn::LoadU(d, v[2] + i), okz), hn::Sub(hn::LoadU(d, v[3] + i), okx),
+        hn::Sub(hn::LoadU(d, v[4] + i), oky), hn::Sub(hn::LoadU(d, v[5] + i), okz),
+        hn::Sub(hn::LoadU(d, v[6] + i), okx), hn::Sub(hn::LoadU(d, v[7] + i), oky),
+        hn::Sub(hn::LoadU(d, v[8] + i), okz), sx, sy, sz, hn::Set(d, *t_max), hn::FirstN(d, count - i));
     if (!hn::AllFalse(d, lanes.hit)) {
       if constexpr (kAny) return true;
       // Closest lane; on equal t the first in leaf order, as a sequential scalar loop would keep.
@@ -141,12 +144,29 @@ HWY_INLINE bool IntersectLeaf(const TriangleLeaves& tris, uint32_t first, uint32
       *hit = {*t_max, uint32_t(at + lane), hn::ExtractLane(lanes.b1, lane), hn::ExtractLane(lanes.b2, lane)};
       found = true;
     }
-    if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero)) && RetestZeroLanesSingle<kAny>(d, lanes.zero, tris, at, wr, t_max, hit)) {
+    if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero)) && RetestZeroLanesSingle<kAny>(d, lanes.zero, tris, first, count, at, wr, t_max, hit)) {
       if constexpr (kAny) return true;
       found = true;
     }
   }
   return found;
+}
+
+// Software prefetch of a node (all its cache lines) or of a leaf's triangle block.
+template <int N>
+HWY_INLINE void Prefetch(const WideBvh<N>& bvh, const SingleRay& r, uint32_t ref, uint32_t count) {
+  const char* p;
+  size_t bytes;
+  if (ref & kLeafFlag) {
+    p = reinterpret_cast<const char*>(r.leaf_data + 9 * size_t(ref & ~kLeafFlag));
+    bytes = 36 * size_t(count);
+  } else {
+    p = reinterpret_cast<const char*>(&bvh.nodes[ref]);
+    bytes = sizeof(WideNode<N>);
+  }
+  const uintptr_t end = reinterpret_cast<uintptr_t>(p) + bytes;
+  for (uintptr_t a = reinterpret_cast<uintptr_t>(p) & ~uintptr_t(63); a < end; a += 64)
+    __builtin_prefetch(reinterpret_cast<const void*>(a));
 }
 
 // Closest hit (kAny = false: fills *hit, returns whether anything was hit) or any hit (returns occlusion), in the
@@ -206,6 +226,9 @@ HWY_INLINE bool TraceRay(const WideBvh<N>& bvh, const TriangleLeaves& tris, cons
           }
           ref = node.child[order[n - 1]];
           count = node.leaf_count[order[n - 1]];
+          // The second nearest child is the likeliest next pop: start loading it (prefetching every pushed child
+          // measured no better).
+          Prefetch<N>(bvh, r, stack[sp - 1].ref, stack[sp - 1].count);
           continue;
         }
       }

@@ -180,7 +180,7 @@ TEMPLATE_TEST_CASE_SIG("bvh_build: closest hit and any hit equal brute force", "
   for (int max_leaf : {1, 8, 16}) {
     INFO("max_leaf_size " << max_leaf);
     const WideBvh<N> bvh = build_wide_bvh<N>(prims, {.max_leaf_size = max_leaf});
-    const TriangleLeaves leaves = make_triangle_leaves(bvh.prim_indices, verts);
+    const TriangleLeaves leaves = make_triangle_leaves(bvh, verts);
     REQUIRE(leaves.size() == n);
     Pcg32 rng(3);
     int hits = 0;
@@ -222,7 +222,7 @@ TEMPLATE_TEST_CASE_SIG("bvh_build: zero, one and invalid primitives", "[bvh_buil
   CHECK(none.bounds.empty());
   CHECK(sah_cost(none) == 0);
   CHECK(bvh_stats(none).nodes == 0);
-  CHECK(make_triangle_leaves(none.prim_indices, std::vector<Vec3f>{}).size() == 0);
+  CHECK(make_triangle_leaves(none, std::vector<Vec3f>{}).size() == 0);
   Ray ray{{0.5f, 0.5f, -5}, {0, 0, 1}};
   CHECK_FALSE(wide_intersect(none, ray, [](uint32_t, Ray&) { return true; }));
   CHECK_FALSE(wide_occluded(none, ray, [](uint32_t, const Ray&) { return true; }));
@@ -357,34 +357,40 @@ TEMPLATE_TEST_CASE_SIG("bvh_build: SAH cost, and SAH beats median splits", "[bvh
   CHECK(sah_cost(build_wide_bvh<N>(prims, {.bins = 32})) < 1.05f * sah_cost(sah));
 }
 
-TEST_CASE("bvh_build: triangle leaves in leaf order, padded", "[bvh_build]") {
+TEST_CASE("bvh_build: triangle leaves in leaf order, one block per leaf, padded", "[bvh_build]") {
   const std::vector<Vec3f> verts = random_triangles(300, 9);
   const WideBvh<8> bvh = build_wide_bvh<8>(bounds_of(verts));
-  const TriangleLeaves l = make_triangle_leaves(bvh.prim_indices, verts, false);
+  const TriangleLeaves l = make_triangle_leaves(bvh, verts, false);
   REQUIRE(l.size() == 300);
-  CHECK(l.memory_bytes() == 9 * (300 + TriangleLeaves::kLeafPadding) * 4);
-  for (size_t i = 0; i < 300; ++i) {
-    Vec3f p0, p1, p2;
-    leaf_triangle(l, uint32_t(i), &p0, &p1, &p2);
-    const uint32_t t = bvh.prim_indices[i];
-    CHECK((p0 == verts[3 * t] && p1 == verts[3 * t + 1] && p2 == verts[3 * t + 2]));
-  }
-  for (const std::vector<float>* a : {&l.v0x, &l.v0y, &l.v0z, &l.v1x, &l.v1y, &l.v1z, &l.v2x, &l.v2y, &l.v2z}) {
-    REQUIRE(a->size() == 300 + TriangleLeaves::kLeafPadding);
-    for (size_t i = 300; i < a->size(); ++i) CHECK((*a)[i] == 0.0f);
-  }
+  CHECK(l.memory_bytes() == (9 * 300 + TriangleLeaves::kLeafPadding) * 4);
+  REQUIRE(l.data.size() == 9 * 300 + TriangleLeaves::kLeafPadding);
+  // Every leaf (first, count) holds its triangles as nine runs of count floats from 9 * first.
+  size_t seen = 0;
+  for (const WideNode<8>& n : bvh.nodes)
+    for (int c = 0; c < 8; ++c) {
+      if (n.child[c] == kEmptyChild || !(n.child[c] & kLeafFlag)) continue;
+      const uint32_t first = n.child[c] & ~kLeafFlag, count = n.leaf_count[c];
+      for (uint32_t i = first; i < first + count; ++i, ++seen) {
+        Vec3f p0, p1, p2;
+        leaf_triangle(l, first, count, i, &p0, &p1, &p2);
+        const uint32_t t = bvh.prim_indices[i];
+        CHECK((p0 == verts[3 * t] && p1 == verts[3 * t + 1] && p2 == verts[3 * t + 2]));
+        for (int r = 0; r < 9; ++r) CHECK(l.run(first, count, r)[i - first] == verts[3 * t + r / 3][r % 3]);
+      }
+    }
+  CHECK(seen == 300);
+  for (size_t i = 9 * 300; i < l.data.size(); ++i) CHECK(l.data[i] == 0.0f);
   // The mesh overload reads the same triangles through the index triples.
   TriangleMesh mesh;
   for (size_t i = 0; i < verts.size(); ++i) mesh.add_vertex(verts[verts.size() - 1 - i]);  // reversed storage
   for (uint32_t t = 0; t < 300; ++t) mesh.add_triangle(899 - 3 * t, 898 - 3 * t, 897 - 3 * t);
-  const TriangleLeaves m = make_triangle_leaves(bvh.prim_indices, mesh);
-  CHECK(m.v0x == l.v0x);
-  CHECK(m.v1y == l.v1y);
-  CHECK(m.v2z == l.v2z);
-  const std::vector<uint32_t> bad{300};
+  const TriangleLeaves m = make_triangle_leaves(bvh, mesh);
+  CHECK(m.data == l.data);
+  WideBvh<8> bad = bvh;
+  bad.prim_indices[0] = 300;
   CHECK_THROWS_WITH(make_triangle_leaves(bad, verts), Catch::Contains("out of range"));
   CHECK_THROWS_WITH(make_triangle_leaves(bad, mesh), Catch::Contains("out of range"));
-  CHECK_THROWS_AS(make_triangle_leaves({}, std::span<const Vec3f>(verts.data(), 4)), Error);
+  CHECK_THROWS_AS(make_triangle_leaves(bvh, std::span<const Vec3f>(verts.data(), 4)), Error);
 }
 
 TEST_CASE("bvh_build: invalid options and infinite bounds are reported", "[bvh_build]") {

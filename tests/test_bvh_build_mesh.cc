@@ -131,7 +131,7 @@ void report_row(const std::vector<Bounds3f>& prims, const TriangleMesh& mesh, co
   if (binary_block > 0) bo.leaf_block_size = binary_block;
   const WideBvh<N> bvh = collapse<N>(build_binary_bvh(prims, bo), o);
   const BvhStats s = bvh_stats(bvh);
-  const TriangleLeaves leaves = make_triangle_leaves(bvh.prim_indices, mesh);
+  const TriangleLeaves leaves = make_triangle_leaves(bvh, mesh);
   const double nodes = double(s.node_bytes) / n, leaf = double(leaves.memory_bytes()) / n;
   std::printf("  N=%d leaf<=%-2d block %d%s%s | nodes %5.2f  leaves %5.2f  prim_idx %4.2f | total %5.2f"
               " | avg leaf %4.2f  fill %4.2f/%d  depth %2d  SAH %6.2f\n",
@@ -153,7 +153,7 @@ TEST_CASE("bvh_build: dragon fits 64 bytes per triangle and traces like the refe
   REQUIRE(mesh.vertex_count() == 50002);
   const std::vector<Bounds3f> prims = triangle_bounds(mesh);
   const WideBvh<kDefaultBvhWidth> bvh = build_wide_bvh<kDefaultBvhWidth>(prims);
-  const TriangleLeaves leaves = make_triangle_leaves(bvh.prim_indices, mesh);
+  const TriangleLeaves leaves = make_triangle_leaves(bvh, mesh);
   const BvhStats s = bvh_stats(bvh);
   const double n = double(mesh.triangle_count());
   const double total = (double(s.node_bytes) + double(leaves.memory_bytes())) / n + mesh_bytes_per_tri(mesh);
@@ -231,7 +231,7 @@ TEST_CASE("bvh_build: build speed report", "[.bvh_speed]") {
         const auto t0 = std::chrono::steady_clock::now();
         const WideBvh<kDefaultBvhWidth> bvh = build_wide_bvh<kDefaultBvhWidth>(prims);
         const auto t1 = std::chrono::steady_clock::now();
-        const TriangleLeaves leaves = make_triangle_leaves(bvh.prim_indices, mesh);
+        const TriangleLeaves leaves = make_triangle_leaves(bvh, mesh);
         const auto t2 = std::chrono::steady_clock::now();
         cpu_ms.push_back(1e3 * double(std::clock() - c0) / CLOCKS_PER_SEC);
         ms_bvh.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());

@@ -86,7 +86,7 @@ Tree<N> build(const Soup& s) {
   BvhBuildOptions options;
   options.parallel = false;
   t.bvh = build_wide_bvh<N>(b, options);
-  t.leaves = make_triangle_leaves(t.bvh.prim_indices, s, false);
+  t.leaves = make_triangle_leaves(t.bvh, s, false);
   return t;
 }
 

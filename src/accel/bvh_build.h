@@ -129,15 +129,16 @@ struct BvhStats {
 template <int N>
 BvhStats bvh_stats(const WideBvh<N>& bvh);
 
-// Triangle vertices in leaf order: entry i holds the triangle prim_indices[i], read from `vertices`, which has
-// three entries (p0, p1, p2) per triangle of the caller's numbering. Padded as wide_bvh.h describes (empty for
-// no triangles). Throws torte::Error for an index out of range. `parallel`: the executor seam, as in the options.
-TriangleLeaves make_triangle_leaves(std::span<const uint32_t> prim_indices, std::span<const Vec3f> vertices,
-                                    bool parallel = true);
+// Triangle vertices in leaf order, laid out per leaf of `bvh` (wide_bvh.h): leaf-order entry i holds the
+// triangle bvh.prim_indices[i], read from `vertices`, which has three entries (p0, p1, p2) per triangle of the
+// caller's numbering. Padded as wide_bvh.h describes (empty for no triangles). Throws torte::Error for an index
+// out of range. `parallel`: the executor seam, as in the options.
+template <int N>
+TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, std::span<const Vec3f> vertices, bool parallel = true);
 // Same, with the vertices looked up through the mesh's index triples (the mesh must pass
 // TriangleMesh::validate; only prim_indices are range-checked here).
-TriangleLeaves make_triangle_leaves(std::span<const uint32_t> prim_indices, const TriangleMesh& mesh,
-                                    bool parallel = true);
+template <int N>
+TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, const TriangleMesh& mesh, bool parallel = true);
 
 extern template WideBvh<4> collapse<4>(const BinaryBvh&, const BvhBuildOptions&);
 extern template WideBvh<8> collapse<8>(const BinaryBvh&, const BvhBuildOptions&);
@@ -147,5 +148,9 @@ extern template float sah_cost<4>(const WideBvh<4>&, const BvhBuildOptions&);
 extern template float sah_cost<8>(const WideBvh<8>&, const BvhBuildOptions&);
 extern template BvhStats bvh_stats<4>(const WideBvh<4>&);
 extern template BvhStats bvh_stats<8>(const WideBvh<8>&);
+extern template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, std::span<const Vec3f>, bool);
+extern template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, std::span<const Vec3f>, bool);
+extern template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, const TriangleMesh&, bool);
+extern template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, const TriangleMesh&, bool);
 
 }  // namespace torte

@@ -308,29 +308,39 @@ BvhStats bvh_stats(const WideBvh<N>& bvh) {
 
 namespace {
 
-template <class Vertices>
-TriangleLeaves fill_leaves(std::span<const uint32_t> prim_indices, bool parallel, Vertices&& vertices) {
+template <int N, class Vertices>
+TriangleLeaves fill_leaves(const WideBvh<N>& bvh, bool parallel, Vertices&& vertices) {
   TriangleLeaves leaves;
+  const std::span<const uint32_t> prim_indices = bvh.prim_indices;
   const size_t n = prim_indices.size();
   if (n == 0) return leaves;
   // resize zero-fills, which also writes the padding.
-  for (std::vector<float>* a : {&leaves.v0x, &leaves.v0y, &leaves.v0z, &leaves.v1x, &leaves.v1y, &leaves.v1z,
-                                &leaves.v2x, &leaves.v2y, &leaves.v2z})
-    a->resize(n + TriangleLeaves::kLeafPadding, 0.0f);
+  leaves.data.resize(9 * n + TriangleLeaves::kLeafPadding, 0.0f);
+  float* const data = leaves.data.data();
+  // Every leaf is a slot of exactly one node: fill node by node.
   auto fill = [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) {
-      Vec3f p[3];
-      vertices(prim_indices[i], p);
-      leaves.v0x[i] = p[0].x, leaves.v0y[i] = p[0].y, leaves.v0z[i] = p[0].z;
-      leaves.v1x[i] = p[1].x, leaves.v1y[i] = p[1].y, leaves.v1z[i] = p[1].z;
-      leaves.v2x[i] = p[2].x, leaves.v2y[i] = p[2].y, leaves.v2z[i] = p[2].z;
+    for (size_t ni = b; ni < e; ++ni) {
+      const WideNode<N>& node = bvh.nodes[ni];
+      for (int c = 0; c < N; ++c) {
+        if (node.child[c] == kEmptyChild || !(node.child[c] & kLeafFlag)) continue;
+        const uint32_t first = node.child[c] & ~kLeafFlag, count = node.leaf_count[c];
+        if (size_t(first) + count > n) throw Error("Triangle leaves: a leaf lies outside prim_indices.");
+        float* const out = data + 9 * size_t(first);
+        for (uint32_t j = 0; j < count; ++j) {
+          Vec3f p[3];
+          vertices(prim_indices[first + j], p);
+          for (int k = 0; k < 3; ++k)
+            for (int a = 0; a < 3; ++a) out[size_t(3 * k + a) * count + j] = p[k][a];
+        }
+      }
     }
   };
+  const size_t nodes = bvh.nodes.size();
   if (parallel && n > 16384) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 8192),
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes, 1024),
                       [&](const tbb::blocked_range<size_t>& r) { fill(r.begin(), r.end()); });
   } else {
-    fill(0, n);
+    fill(0, nodes);
   }
   return leaves;
 }
@@ -344,20 +354,20 @@ void check_prims(std::span<const uint32_t> prim_indices, size_t triangles) {
 
 }  // namespace
 
-TriangleLeaves make_triangle_leaves(std::span<const uint32_t> prim_indices, std::span<const Vec3f> vertices,
-                                    bool parallel) {
+template <int N>
+TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, std::span<const Vec3f> vertices, bool parallel) {
   if (vertices.size() % 3 != 0)
     throw Error("Triangle leaves: " + std::to_string(vertices.size()) + " vertices is not three per triangle.");
-  check_prims(prim_indices, vertices.size() / 3);
-  return fill_leaves(prim_indices, parallel, [&](uint32_t t, Vec3f* p) {
+  check_prims(bvh.prim_indices, vertices.size() / 3);
+  return fill_leaves(bvh, parallel, [&](uint32_t t, Vec3f* p) {
     for (int j = 0; j < 3; ++j) p[j] = vertices[3 * size_t(t) + j];
   });
 }
 
-TriangleLeaves make_triangle_leaves(std::span<const uint32_t> prim_indices, const TriangleMesh& mesh,
-                                    bool parallel) {
-  check_prims(prim_indices, mesh.triangle_count());
-  return fill_leaves(prim_indices, parallel, [&](uint32_t t, Vec3f* p) {
+template <int N>
+TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, const TriangleMesh& mesh, bool parallel) {
+  check_prims(bvh.prim_indices, mesh.triangle_count());
+  return fill_leaves(bvh, parallel, [&](uint32_t t, Vec3f* p) {
     for (int j = 0; j < 3; ++j) p[j] = mesh.position(mesh.indices[3 * size_t(t) + j]);
   });
 }
@@ -370,5 +380,9 @@ template float sah_cost<4>(const WideBvh<4>&, const BvhBuildOptions&);
 template float sah_cost<8>(const WideBvh<8>&, const BvhBuildOptions&);
 template BvhStats bvh_stats<4>(const WideBvh<4>&);
 template BvhStats bvh_stats<8>(const WideBvh<8>&);
+template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, std::span<const Vec3f>, bool);
+template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, std::span<const Vec3f>, bool);
+template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, const TriangleMesh&, bool);
+template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, const TriangleMesh&, bool);
 
 }  // namespace torte

@@ -41,13 +41,26 @@ struct WideBvh {
   size_t memory_bytes() const { return nodes.size() * sizeof(WideNode<N>) + prim_indices.size() * sizeof(uint32_t); }
 };
 
-// Triangle vertices in leaf order, structure of arrays: 36 bytes per triangle. Each array is padded with
-// kLeafPadding zero entries so a kernel may load a full vector from the start of any leaf.
+// Triangle vertices in leaf order, grouped per leaf: 36 bytes per triangle. The leaf (first, count) of a node
+// owns floats [9 * first, 9 * (first + count)) of `data`, as nine runs of `count` floats, run r = 3 * vertex +
+// axis (v0x, v0y, v0z, v1x, ..., v2z), so a leaf is one contiguous block (a leaf of 4 triangles: 144 bytes, two or
+// three cache lines, where nine separate arrays cost nine or more). Built from the tree by make_triangle_leaves,
+// whose leaves it follows. `data` ends with kLeafPadding zeros so a kernel may load a full vector (up to 16
+// lanes) from any position inside any run.
 struct TriangleLeaves {
   static constexpr size_t kLeafPadding = 16;
-  std::vector<float> v0x, v0y, v0z, v1x, v1y, v1z, v2x, v2y, v2z;
-  size_t size() const { return v0x.empty() ? 0 : v0x.size() - kLeafPadding; }
-  size_t memory_bytes() const { return 9 * v0x.size() * sizeof(float); }
+  std::vector<float> data;
+  size_t size() const { return data.empty() ? 0 : (data.size() - kLeafPadding) / 9; }
+  size_t memory_bytes() const { return data.size() * sizeof(float); }
+  // Start of run r of the leaf (first, count).
+  const float* run(uint32_t first, uint32_t count, int r) const {
+    return data.data() + 9 * size_t(first) + size_t(r) * count;
+  }
+  // Vertex k (0..2) of leaf-order triangle i of the leaf (first, count).
+  Vec3f vertex(uint32_t first, uint32_t count, uint32_t i, int k) const {
+    const size_t at = 9 * size_t(first) + size_t(3 * k) * count + (i - first);
+    return {data[at], data[at + count], data[at + 2 * size_t(count)]};
+  }
 };
 
 }  // namespace torte

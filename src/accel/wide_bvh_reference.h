@@ -10,6 +10,7 @@
 // test would miss them anyway, which the kernels rely on.
 #pragma once
 #include <cstdint>
+#include <type_traits>
 
 #include "accel/bvh2.h"
 #include "accel/bvh_build.h"
@@ -23,6 +24,14 @@ namespace torte {
 template <int N>
 Bounds3f wide_child_bounds(const WideNode<N>& n, int i) {
   return {{n.lo_x[i], n.lo_y[i], n.lo_z[i]}, {n.hi_x[i], n.hi_y[i], n.hi_z[i]}};
+}
+
+// Calls a primitive callback as (i, ray) or, if it takes them, (i, ray, first, count) with the leaf's range
+// (TriangleLeaves are laid out per leaf).
+template <class F, class R>
+bool call_prim(F& f, uint32_t i, R& ray, uint32_t first, uint32_t count) {
+  if constexpr (std::is_invocable_v<F&, uint32_t, R&, uint32_t, uint32_t>) return f(i, ray, first, count);
+  else return f(i, ray);
 }
 
 // Closest hit. `hit_prim(i, ray)` tests leaf-order primitive i; on a hit closer than ray.t_max it must shrink
@@ -47,7 +56,7 @@ bool wide_intersect(const WideBvh<N>& bvh, Ray& ray, HitPrim&& hit_prim) {
     if (e.t_near > ray.t_max) continue;
     if (e.child & kLeafFlag) {
       const uint32_t first = e.child & ~kLeafFlag;
-      for (uint32_t i = 0; i < e.count; ++i) hit |= hit_prim(first + i, ray);
+      for (uint32_t i = 0; i < e.count; ++i) hit |= call_prim(hit_prim, first + i, ray, first, e.count);
       continue;
     }
     const WideNode<N>& n = bvh.nodes[e.child];
@@ -83,7 +92,7 @@ bool wide_occluded(const WideBvh<N>& bvh, const Ray& ray, OccludedPrim&& occlude
     if (e.child & kLeafFlag) {
       const uint32_t first = e.child & ~kLeafFlag;
       for (uint32_t i = 0; i < e.count; ++i)
-        if (occluded_prim(first + i, ray)) return true;
+        if (call_prim(occluded_prim, first + i, ray, first, e.count)) return true;
       continue;
     }
     const WideNode<N>& n = bvh.nodes[e.child];
@@ -94,10 +103,12 @@ bool wide_occluded(const WideBvh<N>& bvh, const Ray& ray, OccludedPrim&& occlude
   return false;
 }
 
-inline void leaf_triangle(const TriangleLeaves& l, uint32_t i, Vec3f* p0, Vec3f* p1, Vec3f* p2) {
-  *p0 = {l.v0x[i], l.v0y[i], l.v0z[i]};
-  *p1 = {l.v1x[i], l.v1y[i], l.v1z[i]};
-  *p2 = {l.v2x[i], l.v2y[i], l.v2z[i]};
+// Leaf-order triangle i of the leaf (first, count).
+inline void leaf_triangle(const TriangleLeaves& l, uint32_t first, uint32_t count, uint32_t i, Vec3f* p0, Vec3f* p1,
+                          Vec3f* p2) {
+  *p0 = l.vertex(first, count, i, 0);
+  *p1 = l.vertex(first, count, i, 1);
+  *p2 = l.vertex(first, count, i, 2);
 }
 
 // Closest triangle hit in (0, ray.t_max) with torte::intersect_triangle (watertight). Hit::prim is the
@@ -107,9 +118,9 @@ Hit wide_closest_hit_reference(const WideBvh<N>& bvh, const TriangleLeaves& leav
   Hit hit;
   const WatertightRay wr(ray);
   Ray r = ray;
-  wide_intersect(bvh, r, [&](uint32_t i, Ray& rr) {
+  wide_intersect(bvh, r, [&](uint32_t i, Ray& rr, uint32_t first, uint32_t count) {
     Vec3f p0, p1, p2;
-    leaf_triangle(leaves, i, &p0, &p1, &p2);
+    leaf_triangle(leaves, first, count, i, &p0, &p1, &p2);
     TriangleHit th;
     if (!intersect_triangle(wr, rr.t_max, p0, p1, p2, &th)) return false;
     rr.t_max = th.t;
@@ -123,9 +134,9 @@ Hit wide_closest_hit_reference(const WideBvh<N>& bvh, const TriangleLeaves& leav
 template <int N>
 bool wide_any_hit_reference(const WideBvh<N>& bvh, const TriangleLeaves& leaves, const Ray& ray) {
   const WatertightRay wr(ray);
-  return wide_occluded(bvh, ray, [&](uint32_t i, const Ray& r) {
+  return wide_occluded(bvh, ray, [&](uint32_t i, const Ray& r, uint32_t first, uint32_t count) {
     Vec3f p0, p1, p2;
-    leaf_triangle(leaves, i, &p0, &p1, &p2);
+    leaf_triangle(leaves, first, count, i, &p0, &p1, &p2);
     return intersect_triangle(wr, r.t_max, p0, p1, p2, nullptr);
   });
 }

@@ -49,7 +49,7 @@ void GeometrySet::build(const std::vector<TriangleMesh>& meshes, const std::vect
                       });
   });
   tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds);
-  tri_leaves_ = make_triangle_leaves(tri_bvh_.prim_indices, vertices);
+  tri_leaves_ = make_triangle_leaves(tri_bvh_, vertices);
   std::vector<Bounds3f> quadric_bounds(quadrics.size());
   for (size_t q = 0; q < quadrics.size(); ++q) quadric_bounds[q] = world_bounds(quadrics[q]);
   quadric_bvh_.build(quadric_bounds);
