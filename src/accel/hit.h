@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 
+#include "core/ray.h"
 #include "core/vec.h"
 
 namespace torte {
@@ -22,5 +23,15 @@ struct RaySoA {
   const float *dx, *dy, *dz;
   const float* t_max;
 };
+
+// Ray i of a RaySoA (for the code that traces one ray at a time), with t_max replaced when given.
+inline Ray ray_at(const RaySoA& rays, size_t i) {
+  return Ray{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
+}
+inline Ray ray_at(const RaySoA& rays, size_t i, float t_max) {
+  Ray r = ray_at(rays, i);
+  r.t_max = t_max;
+  return r;
+}
 
 }  // namespace torte

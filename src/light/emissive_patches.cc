@@ -36,12 +36,11 @@ void EmissivePatches::add_triangle(Vec3f p0, Vec3f p1, Vec3f p2, Rgb radiance, b
 void EmissivePatches::finish() {
   if (patches_.empty()) throw Error("emissive patches: nothing emits (zero area or black radiance)");
   std::vector<float> w(patches_.size());
-  total_weight_ = total_area_ = 0;
+  total_weight_ = 0;
   for (size_t k = 0; k < patches_.size(); ++k) {
     const EmissivePatch& p = patches_[k];
     w[k] = p.area * p.radiance.average() * (p.two_sided ? 2.0f : 1.0f);
     total_weight_ += w[k];
-    total_area_ += p.area;
   }
   select_ = Distribution1D(w);
 }

@@ -45,7 +45,6 @@ class EmissivePatches {
 
   size_t size() const { return patches_.size(); }
   const EmissivePatch& patch(size_t k) const { return patches_[k]; }
-  float total_area() const { return float(total_area_); }
   // Emitted power / pi (W above): light selection weighs lights by power.
   float weight() const { return float(total_weight_); }
   // Density per unit area of a point on a patch with this radiance and sidedness (see the top of the file).
@@ -57,7 +56,7 @@ class EmissivePatches {
  private:
   std::vector<EmissivePatch> patches_;
   Distribution1D select_;
-  double total_weight_ = 0, total_area_ = 0;
+  double total_weight_ = 0;
 };
 
 }  // namespace torte

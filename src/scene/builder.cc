@@ -175,7 +175,6 @@ struct SceneBuilder::Flattening {
     Light light;
     light.kind = LightKind::Patches;
     light.patches = patches;
-    light.area = patches->total_area();
     const int32_t light_index = int32_t(scene.lights.size());
     scene.lights.push_back(light);
     if (scene.override_emission.size() < scene.material_overrides.size())

@@ -109,17 +109,14 @@ void GeometrySet::intersect(const RaySoA& rays, size_t count, Hit* hits, bool co
 // Voxel grids after the triangles and quadrics, with t_max clipped to their hit: coherent rays in packets
 // (simd/voxel_packet.h), others one at a time (voxel/voxel_traverse.h).
 void GeometrySet::intersect_grids(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
-  auto ray = [&](size_t i) {
-    return Ray{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
-  };
   if (coherent && count >= 16) {  // packets of 16 (camera rays come in tiles)
     std::vector<Ray> aos(count);
-    for (size_t i = 0; i < count; ++i) aos[i] = ray(i);
+    for (size_t i = 0; i < count; ++i) aos[i] = ray_at(rays, i);
     for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].intersect_coherent(aos.data(), count, g, hits);
     return;
   }
   for (size_t i = 0; i < count; ++i) {
-    const Ray r = ray(i);
+    const Ray r = ray_at(rays, i);
     for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].intersect(r, g, &hits[i]);
   }
 }
@@ -127,7 +124,7 @@ void GeometrySet::intersect_grids(const RaySoA& rays, size_t count, Hit* hits, b
 void GeometrySet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const {
   const uint32_t ntri = triangle_count();
   for (size_t i = 0; i < count; ++i) {
-    Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, std::min(rays.t_max[i], hits[i].t)};
+    Ray r = ray_at(rays, i, std::min(rays.t_max[i], hits[i].t));
     if (!(r.t_max > 0)) continue;
     quadric_bvh_.intersect(r, [&](uint32_t q, Ray& ray) {
       float t;
@@ -154,7 +151,7 @@ void GeometrySet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, b
   const bool grid_packets = coherent && count >= 16 && grid_count() > 0;
   for (size_t i = 0; i < count; ++i) {
     if (blocked[i]) continue;
-    const Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
+    const Ray r = ray_at(rays, i);
     if (!quadrics_->empty())
       blocked[i] = quadric_bvh_.occluded(r, [&](uint32_t q, const Ray& ray) {
         float t;
@@ -167,7 +164,7 @@ void GeometrySet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, b
   if (grid_packets) {
     std::vector<Ray> aos(count);
     for (size_t i = 0; i < count; ++i)  // rays already blocked: nothing to search
-      aos[i] = {{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, blocked[i] ? 0.0f : rays.t_max[i]};
+      aos[i] = ray_at(rays, i, blocked[i] ? 0.0f : rays.t_max[i]);
     for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].occluded_coherent(aos.data(), count, blocked);
   }
 }

@@ -94,7 +94,7 @@ Ray to_instance(const Instance& inst, const Ray& world) {
 
 void Scene::intersect_instances(const RaySoA& rays, size_t count, Hit* hits) const {
   for (size_t i = 0; i < count; ++i) {
-    Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, std::min(rays.t_max[i], hits[i].t)};
+    Ray r = ray_at(rays, i, std::min(rays.t_max[i], hits[i].t));
     if (!(r.t_max > 0)) continue;
     instance_bvh_.intersect(r, [&](uint32_t k, Ray& ray) {
       const Instance& inst = instances[k];
@@ -113,7 +113,7 @@ void Scene::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool co
   if (instances.empty()) return;
   for (size_t i = 0; i < count; ++i) {
     if (blocked[i]) continue;
-    const Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}, rays.t_max[i]};
+    const Ray r = ray_at(rays, i);
     blocked[i] = instance_bvh_.occluded(r, [&](uint32_t k, const Ray& ray) {
       const Instance& inst = instances[k];
       return prototypes[inst.prototype]->geometry.occluded_one(to_instance(inst, ray));

@@ -32,6 +32,20 @@ struct CellHandler {
   }
 };
 
+// A grid hit as the set's Hit (the encoding at the top of voxel_accel.h).
+void encode_hit(const VoxelHit& vh, uint32_t index, Hit* hit) {
+  hit->t = vh.t;
+  if (vh.face >= 0) {
+    hit->prim = voxel_prim(index, false, vh.face, vh.id);
+    hit->b1 = vh.u;
+    hit->b2 = vh.v;
+  } else {
+    hit->prim = voxel_prim(index, true, 0, vh.id);
+    hit->b1 = vh.cell.b1;
+    hit->b2 = vh.cell.b2;
+  }
+}
+
 Vec3f unit(int axis, float s = 1) {
   Vec3f v(0, 0, 0);
   v[axis] = s;
@@ -46,16 +60,7 @@ bool VoxelGridAccel::intersect(const Ray& ray, uint32_t index, Hit* hit) const {
   if (!(r.t_max > 0)) return false;
   VoxelHit vh;
   if (!voxel_intersect(*tree, r, &vh, CellHandler{*this}) || !(vh.t < hit->t)) return false;
-  hit->t = vh.t;
-  if (vh.face >= 0) {
-    hit->prim = voxel_prim(index, false, vh.face, vh.id);
-    hit->b1 = vh.u;
-    hit->b2 = vh.v;
-  } else {
-    hit->prim = voxel_prim(index, true, 0, vh.id);
-    hit->b1 = vh.cell.b1;
-    hit->b2 = vh.cell.b2;
-  }
+  encode_hit(vh, index, hit);
   return true;
 }
 
@@ -80,18 +85,7 @@ void VoxelGridAccel::intersect_coherent(const Ray* set_rays, size_t count, uint3
                           voxel_cell_callbacks(cells));
   for (size_t i = 0; i < count; ++i) {
     // As intersect(): rays with nothing left to search keep their hit.
-    if (!found[i] || !(rays[i].t_max > 0) || !(vh[i].t < hits[i].t)) continue;
-    Hit& h = hits[i];
-    h.t = vh[i].t;
-    if (vh[i].face >= 0) {
-      h.prim = voxel_prim(index, false, vh[i].face, vh[i].id);
-      h.b1 = vh[i].u;
-      h.b2 = vh[i].v;
-    } else {
-      h.prim = voxel_prim(index, true, 0, vh[i].id);
-      h.b1 = vh[i].cell.b1;
-      h.b2 = vh[i].cell.b2;
-    }
+    if (found[i] && rays[i].t_max > 0 && vh[i].t < hits[i].t) encode_hit(vh[i], index, &hits[i]);
   }
 }
 
