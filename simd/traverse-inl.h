@@ -78,17 +78,19 @@ HWY_INLINE uint32_t MaskBits(D d, hn::Mask<D> m) {
 
 template <class D>
 struct WatertightLanes {
-  hn::Mask<D> hit;   // hit in (0, t_max), decided in float
+  hn::Mask<D> hit;   // inside and 0 < t < t_max by the range test; ResolveHits divides and checks again
   hn::Mask<D> zero;  // an edge function is exactly 0: the caller re-tests these lanes with the scalar test
-  hn::Vec<D> t, b1, b2;
+  hn::Vec<D> det, t_scaled, v, w;  // t = t_scaled / det, b1 = v / det, b2 = w / det
+  hn::Vec<D> t, b1, b2;            // set by ResolveHits
 };
 
 // The watertight test of geometry/triangle.cc, lane by lane, operation for operation (same rounding, no FMA),
 // so every lane takes the decision the scalar code takes. Inputs are the triangle's vertices minus the ray origin,
 // already permuted to the ray's (kx, ky, kz) axes, and the ray's shear (sx, sy, sz). Only `candidates` lanes can
-// hit or be reported as zero lanes.
-// kSkipMisses: return before the division when no lane can hit (pays in packets, where most triangle tests
-// miss; single rays test a leaf's triangles at once and lose more to the unpredictable branch).
+// hit or be reported as zero lanes. Stops before the division, which only ResolveHits does: call it when any
+// lane of `hit` is set (most tests end with none: the triangle is missed, behind the origin or beyond t_max).
+// kSkipMisses: also return before the range test when no lane is inside (pays in packets, where most triangle
+// tests miss; single rays test a leaf's triangles at once and lose more to the unpredictable branch).
 template <bool kSkipMisses = false, class D, class V = hn::Vec<D>>
 HWY_INLINE WatertightLanes<D> WatertightTest(D d, V akx, V aky, V akz, V bkx, V bky, V bkz, V ckx, V cky, V ckz,
                                              V sx, V sy, V sz, V t_max, hn::Mask<D> candidates) {
@@ -111,24 +113,33 @@ HWY_INLINE WatertightLanes<D> WatertightTest(D d, V akx, V aky, V akz, V bkx, V 
   const V det = Add(Add(u, v), w);
   WatertightLanes<D> r;
   r.zero = hn::And(candidates, zero_edge);
+  r.det = det;
+  r.v = v;
+  r.w = w;
   // Inside unless the edge functions have mixed signs; det != 0.
   auto hit = hn::AndNot(hn::And(any_neg, any_pos), hn::Ne(det, zero));
   hit = hn::And(hn::AndNot(zero_edge, candidates), hit);
   if (kSkipMisses && hn::AllFalse(d, hit)) {
     r.hit = hit;
-    r.t = r.b1 = r.b2 = zero;
+    r.t_scaled = zero;
     return r;
   }
   const V az = Mul(sz, akz), bz = Mul(sz, bkz), cz = Mul(sz, ckz);
-  const V t_scaled = Add(Add(Mul(u, az), Mul(v, bz)), Mul(w, cz));
-  const V inv_det = hn::Div(hn::Set(d, 1.0f), det);  // exact division, as 1.0f / det (no approximate reciprocal)
-  const V t = Mul(t_scaled, inv_det);
-  // 0 < t < t_max (false for NaN).
-  r.hit = hn::And(hit, hn::And(hn::Gt(t, zero), hn::Lt(t, t_max)));
-  r.t = t;
-  r.b1 = Mul(v, inv_det);
-  r.b2 = Mul(w, inv_det);
+  r.t_scaled = Add(Add(Mul(u, az), Mul(v, bz)), Mul(w, cz));
+  // 0 < t_scaled * sign(det) < t_max * |det| (false for NaN); the sign flip is exact.
+  const V t_signed = hn::Xor(r.t_scaled, hn::And(det, hn::SignBit(d)));
+  r.hit = hn::And(hit, hn::And(hn::Gt(t_signed, zero), hn::Lt(t_signed, Mul(t_max, hn::Abs(det)))));
   return r;
+}
+
+// The division for lanes that passed the range test: t, b1, b2, and the scalar test's final 0 < t < t_max.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void ResolveHits(D d, V t_max, WatertightLanes<D>& r) {
+  const V inv_det = hn::Div(hn::Set(d, 1.0f), r.det);  // exact division, as 1.0f / det (no approximate reciprocal)
+  r.t = hn::Mul(r.t_scaled, inv_det);
+  r.hit = hn::And(r.hit, hn::And(hn::Gt(r.t, hn::Zero(d)), hn::Lt(r.t, t_max)));
+  r.b1 = hn::Mul(r.v, inv_det);
+  r.b2 = hn::Mul(r.w, inv_det);
 }
 
 }  // namespace torte::HWY_NAMESPACE

@@ -368,9 +368,10 @@ HWY_INLINE bool PacketLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t 
           a[k][2] = hn::Sub(PermutedCoord(d, p, 2, g, v[k][0], v[k][1], v[k][2]), okz);
         }
       }
-      const auto r = WatertightTest<true>(d, a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2], a[2][0], a[2][1],
+      auto r = WatertightTest<true>(d, a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2], a[2][0], a[2][1],
                                     a[2][2], hn::Load(d, p.sx + g), hn::Load(d, p.sy + g), hn::Load(d, p.sz + g),
                                     t_max, hn::Gt(t_max, zero));  // live lanes have t_max > 0
+      if (!hn::AllFalse(d, r.hit)) ResolveHits(d, t_max, r);
       if (!hn::AllFalse(d, r.hit)) {
         found = true;
         if constexpr (kAny) {

@@ -16,22 +16,8 @@
 #include "geometry/triangle.h"
 
 #include <cmath>
-#include <utility>
 
 namespace torte {
-
-WatertightRay::WatertightRay(const Ray& ray) : o(ray.o), t_max(ray.t_max) {
-  // Permute so the dominant direction axis becomes z; swapping x and y for a negative z keeps the winding,
-  // which only matters for the sign of det (both faces count here, so it is cosmetic but cheap).
-  kz = max_dimension(abs(ray.d));
-  kx = kz == 2 ? 0 : kz + 1;
-  ky = kx == 2 ? 0 : kx + 1;
-  if (ray.d[kz] < 0) std::swap(kx, ky);
-  valid = ray.d[kz] != 0;  // false for a zero (or NaN) direction
-  sx = ray.d[kx] / ray.d[kz];
-  sy = ray.d[ky] / ray.d[kz];
-  sz = 1.0f / ray.d[kz];
-}
 
 bool intersect_triangle(const Ray& ray, Vec3f p0, Vec3f p1, Vec3f p2, TriangleHit* hit) {
   return intersect_triangle(WatertightRay(ray), ray.t_max, p0, p1, p2, hit);
@@ -68,9 +54,14 @@ bool intersect_triangle(const WatertightRay& wr, float t_max, Vec3f p0, Vec3f p1
 
   const float az = sz * a[kz], bz = sz * b[kz], cz = sz * c[kz];
   const float t_scaled = u * az + v * bz + w * cz;
+  // Range test before the division (t = t_scaled / det), as the paper does: most candidates fail here, and the
+  // vector kernels then skip their division. The sign flip is exact; t_max * |det| may round either way, so the
+  // quotient is checked again below.
+  const float t_signed = det < 0 ? -t_scaled : t_scaled;
+  if (!(t_signed > 0 && t_signed < t_max * std::fabs(det))) return false;  // also rejects NaN
   const float inv_det = 1.0f / det;
   const float t = t_scaled * inv_det;
-  if (!(t > 0 && t < t_max)) return false;  // also rejects NaN
+  if (!(t > 0 && t < t_max)) return false;
   if (hit) {
     hit->t = t;
     hit->b1 = v * inv_det;
