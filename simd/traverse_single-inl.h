@@ -45,7 +45,6 @@ struct SingleRay {
   float inv_d_far[3];                // inv_d * kFarRound: the far planes' rounding folded into one multiply
   uint32_t near_off[3], far_off[3];  // per axis, offset of the entry / exit plane array in a node (node_floats)
   const float* leaf_data;            // TriangleLeaves::data
-  uint32_t runs[9];                  // leaf runs (wide_bvh.h) of v0[kx], v0[ky], v0[kz], v1[kx], ..., v2[kz]
 
   template <int N>
   SingleRay(const Ray& ray, const TriangleLeaves& tris, std::integral_constant<int, N>) : wr(ray) {
@@ -58,11 +57,6 @@ struct SingleRay {
       far_off[a] = bound_offset<N>(a, !neg);
     }
     leaf_data = tris.data.data();
-    for (int k = 0; k < 3; ++k) {
-      runs[3 * k + 0] = uint32_t(3 * k + wr.kx);
-      runs[3 * k + 1] = uint32_t(3 * k + wr.ky);
-      runs[3 * k + 2] = uint32_t(3 * k + wr.kz);
-    }
   }
 };
 
@@ -124,18 +118,23 @@ HWY_INLINE bool IntersectLeaf(const TriangleLeaves& tris, uint32_t first, uint32
   const auto okx = hn::Set(d, wr.o[wr.kx]), oky = hn::Set(d, wr.o[wr.ky]), okz = hn::Set(d, wr.o[wr.kz]);
   const auto sx = hn::Set(d, wr.sx), sy = hn::Set(d, wr.sy), sz = hn::Set(d, wr.sz);
   bool found = false;
+  // Run 3 * vertex + axis of the leaf starts at base + (3 * vertex + axis) * count: the ray's permuted axes pick
+  // vertex 0's three runs, and vertices 1 and 2 lie 3 * count and 6 * count floats further (three multiplies per
+  // leaf, and the rest fits x86 addressing modes).
   const float* const base = r.leaf_data + 9 * size_t(first);
-  const float* v[9];
-  for (int j = 0; j < 9; ++j) v[j] = base + size_t(r.runs[j]) * count;
+  const size_t c = count, v1 = 3 * c, v2 = 6 * c;
+  const float* const px = base + size_t(wr.kx) * c;
+  const float* const py = base + size_t(wr.ky) * c;
+  const float* const pz = base + size_t(wr.kz) * c;
   for (uint32_t i = 0; i < count; i += uint32_t(L)) {
     // Loading L lanes from any position inside a leaf's run stays within the leaf data and its kLeafPadding tail.
     const size_t at = size_t(first) + i;
     auto lanes = WatertightTest(
-        d, hn::Sub(hn::LoadU(d, v[0] + i), okx), hn::Sub(hn::LoadU(d, v[1] + i), oky),
-        hn::Sub(hn::LoadU(d, v[2] + i), okz), hn::Sub(hn::LoadU(d, v[3] + i), okx),
-        hn::Sub(hn::LoadU(d, v[4] + i), oky), hn::Sub(hn::LoadU(d, v[5] + i), okz),
-        hn::Sub(hn::LoadU(d, v[6] + i), okx), hn::Sub(hn::LoadU(d, v[7] + i), oky),
-        hn::Sub(hn::LoadU(d, v[8] + i), okz), sx, sy, sz, hn::Set(d, *t_max), hn::FirstN(d, count - i));
+        d, hn::Sub(hn::LoadU(d, px + i), okx), hn::Sub(hn::LoadU(d, py + i), oky),
+        hn::Sub(hn::LoadU(d, pz + i), okz), hn::Sub(hn::LoadU(d, px + v1 + i), okx),
+        hn::Sub(hn::LoadU(d, py + v1 + i), oky), hn::Sub(hn::LoadU(d, pz + v1 + i), okz),
+        hn::Sub(hn::LoadU(d, px + v2 + i), okx), hn::Sub(hn::LoadU(d, py + v2 + i), oky),
+        hn::Sub(hn::LoadU(d, pz + v2 + i), okz), sx, sy, sz, hn::Set(d, *t_max), hn::FirstN(d, count - i));
     if (!hn::AllFalse(d, lanes.hit)) ResolveHits(d, hn::Set(d, *t_max), lanes);
     if (!hn::AllFalse(d, lanes.hit)) {
       if constexpr (kAny) return true;
@@ -213,6 +212,20 @@ HWY_INLINE bool TraceRay(const WideBvh<N>& bvh, const TriangleLeaves& tris, cons
           count = node.leaf_count[first];
           continue;
         } else {
+          const uint32_t second = uint32_t(__builtin_ctz(bits));
+          bits &= bits - 1;
+          if (bits == 0) {
+            // Two children, the commonest case after one: visit the nearer (the second on a tie, as the sort
+            // below would), push the other.
+            const bool second_nearer = !(t_near[first] < t_near[second]);
+            const uint32_t near = second_nearer ? second : first, far = second_nearer ? first : second;
+            stack[sp++] = {node.child[far], node.leaf_count[far], t_near[far]};
+            ref = node.child[near];
+            count = node.leaf_count[near];
+            Prefetch<N>(bvh, r, stack[sp - 1].ref, stack[sp - 1].count);
+            continue;
+          }
+          bits |= 1u << second;
           // Insertion sort of the hit children, far to near (at most N = 8 of them, usually 2 or 3).
           uint32_t order[N];
           int n = 0;
