@@ -108,16 +108,17 @@ HWY_INLINE WatertightLanes<D> WatertightTest(D d, V akx, V aky, V akz, V bkx, V 
   const V w = Sub(Mul(bx, ay), Mul(by, ax));
   const V zero = hn::Zero(d);
   const auto zero_edge = hn::Or(hn::Or(hn::Eq(u, zero), hn::Eq(v, zero)), hn::Eq(w, zero));
-  const auto any_neg = hn::Or(hn::Or(hn::Lt(u, zero), hn::Lt(v, zero)), hn::Lt(w, zero));
-  const auto any_pos = hn::Or(hn::Or(hn::Gt(u, zero), hn::Gt(v, zero)), hn::Gt(w, zero));
   const V det = Add(Add(u, v), w);
   WatertightLanes<D> r;
   r.zero = hn::And(candidates, zero_edge);
   r.det = det;
   r.v = v;
   r.w = w;
-  // Inside unless the edge functions have mixed signs; det != 0.
-  auto hit = hn::AndNot(hn::And(any_neg, any_pos), hn::Ne(det, zero));
+  // Inside unless the edge functions have mixed signs: all >= 0 or all <= 0, as the scalar test's "not (any < 0
+  // and any > 0)" for every non-NaN lane; a NaN edge function makes det and t_scaled NaN, which the range test
+  // below rejects (whatever Ne does with NaN on the target).
+  const auto same_signs = hn::Or(hn::Ge(hn::Min(u, hn::Min(v, w)), zero), hn::Le(hn::Max(u, hn::Max(v, w)), zero));
+  auto hit = hn::And(same_signs, hn::Ne(det, zero));
   hit = hn::And(hn::AndNot(zero_edge, candidates), hit);
   if (kSkipMisses && hn::AllFalse(d, hit)) {
     r.hit = hit;

@@ -184,6 +184,7 @@ HWY_INLINE bool TraceRay(const WideBvh<N>& bvh, const TriangleLeaves& tris, cons
   Entry stack[kMaxWideDepth * (N - 1) + 1];
   int sp = 0;
   bool found = false;
+  const WideNode<N>* const nodes = bvh.nodes.data();  // held here: stores through hit may alias bvh.nodes
   for (;;) {
     if (ref & kLeafFlag) {
       if (IntersectLeaf<kAny>(tris, ref & ~kLeafFlag, count, r, &t_max, hit)) {
@@ -191,7 +192,7 @@ HWY_INLINE bool TraceRay(const WideBvh<N>& bvh, const TriangleLeaves& tris, cons
         found = true;
       }
     } else {
-      const WideNode<N>& node = bvh.nodes[ref];
+      const WideNode<N>& node = nodes[ref];
       alignas(64) float t_near[N];
       uint32_t bits = IntersectChildren(node, r, t_max, t_near);
       if (bits != 0) {
