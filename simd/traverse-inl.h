@@ -24,15 +24,12 @@ constexpr int kMaxWideDepth = 64;
 // grazing a box never miss it through rounding.
 constexpr float kFarRound = 1 + 2 * 3 * 0x1p-24f;
 
-// Reads ray i. Returns false for rays no triangle can be hit by, which every kernel reports as a miss: non-finite
+// False for rays no triangle can be hit by, which every kernel reports as a miss: non-finite
 // origin or direction components, a zero direction, or t_max NaN or <= 0.
-inline bool load_ray(const RaySoA& rays, size_t i, Ray* ray) {
-  ray->o = {rays.ox[i], rays.oy[i], rays.oz[i]};
-  ray->d = {rays.dx[i], rays.dy[i], rays.dz[i]};
-  ray->t_max = rays.t_max[i];
-  if (!is_finite(ray->o) || !is_finite(ray->d)) return false;
-  if (ray->d.x == 0 && ray->d.y == 0 && ray->d.z == 0) return false;
-  return ray->t_max > 0;  // false for NaN too
+inline bool is_valid_ray(const Ray& ray) {
+  if (!is_finite(ray.o) || !is_finite(ray.d)) return false;
+  if (ray.d.x == 0 && ray.d.y == 0 && ray.d.z == 0) return false;
+  return ray.t_max > 0;  // false for NaN too
 }
 
 // Offsets (in floats, from the start of a WideNode<N>) of the six child-bound arrays, which lie back to back.

@@ -12,6 +12,7 @@
 
 #include "traverse.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -35,27 +36,36 @@ using traverse_detail::kFarRound;
 using traverse_detail::kMaxWideDepth;
 using traverse_detail::node_floats;
 
+// Rays a block at a time: the per-ray constants for the whole block with vector ops (single_ray-inl.h), then
+// each ray's traversal.
 template <int N>
 void ClosestSingle(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                    Hit* hits) {
-  for (size_t i = 0; i < count; ++i) {
-    hits[i] = Hit{};
-    Ray ray;
-    if (bvh.nodes.empty() || !traverse_detail::load_ray(rays, i, &ray)) continue;
-    const SingleRay r(ray, tris, std::integral_constant<int, N>());
-    TraceRay<N, false>(bvh, tris, r, ray.t_max, &hits[i]);
+  RayBlock block;
+  for (size_t first = 0; first < count; first += kRayBlock) {
+    const size_t n = std::min(kRayBlock, count - first);
+    SetupRays<N>(rays, first, n, block);
+    for (size_t j = 0; j < n; ++j) {
+      Hit& hit = hits[first + j];
+      hit = Hit{};
+      if (bvh.nodes.empty() || ((block.valid >> j) & 1) == 0) continue;
+      TraceRay<N, false>(bvh, tris, SingleRay{&block, j, tris.data.data()}, block.t_max[j], &hit);
+    }
   }
 }
 
 template <int N>
 void AnySingle(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                uint8_t* occluded) {
-  for (size_t i = 0; i < count; ++i) {
-    occluded[i] = 0;
-    Ray ray;
-    if (bvh.nodes.empty() || !traverse_detail::load_ray(rays, i, &ray)) continue;
-    const SingleRay r(ray, tris, std::integral_constant<int, N>());
-    occluded[i] = TraceRay<N, true>(bvh, tris, r, ray.t_max, nullptr) ? 1 : 0;
+  RayBlock block;
+  for (size_t first = 0; first < count; first += kRayBlock) {
+    const size_t n = std::min(kRayBlock, count - first);
+    SetupRays<N>(rays, first, n, block);
+    for (size_t j = 0; j < n; ++j) {
+      const bool traced = !bvh.nodes.empty() && ((block.valid >> j) & 1) != 0;
+      occluded[first + j] =
+          traced && TraceRay<N, true>(bvh, tris, SingleRay{&block, j, tris.data.data()}, block.t_max[j], nullptr);
+    }
   }
 }
 

@@ -83,7 +83,7 @@ HWY_INLINE V Pick(M m0, M m1, V x, V y, V z) {
   return hn::IfThenElse(m0, x, hn::IfThenElse(m1, y, z));
 }
 
-// Loads rays [begin, begin + n) (n <= P) into the packet: validity as traverse_detail::load_ray decides it, and
+// Loads rays [begin, begin + n) (n <= P) into the packet: validity as traverse_detail::is_valid_ray decides it, and
 // the per-ray setup of the watertight test computed lane by lane exactly as WatertightRay's constructor does
 // (same axis choice and tie rule, same divisions), so the leaf test takes the scalar test's decisions.
 template <int N, bool kIntervals, size_t P>
@@ -442,8 +442,10 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
       // Few rays left here: one at a time is cheaper than a mostly empty packet.
       for (uint32_t b = lanes; b != 0; b &= b - 1) {
         const size_t i = size_t(__builtin_ctz(b));
-        const SingleRay r(p.ray(i), tris, std::integral_constant<int, N>());
-        if (TraceRay<N, true>(bvh, tris, r, p.t_max[i], nullptr, ref, count)) p.t_max[i] = -kInfinity;
+        RayBlock block;
+        SetupRay<N>(p.ray(i), block, 0);
+        if (TraceRay<N, true>(bvh, tris, SingleRay{&block, 0, tris.data.data()}, p.t_max[i], nullptr, ref, count))
+          p.t_max[i] = -kInfinity;
       }
       if (LiveLanes(p, p.valid) == 0) return;
     } else if (ref & kLeafFlag) {

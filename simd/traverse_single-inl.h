@@ -28,6 +28,7 @@
 #include "accel/wide_bvh.h"
 #include "geometry/triangle.h"
 #include "traverse-inl.h"
+#include "single_ray-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace torte::HWY_NAMESPACE {
@@ -38,45 +39,23 @@ using traverse_detail::kFarRound;
 using traverse_detail::kMaxWideDepth;
 using traverse_detail::node_floats;
 
-// Everything about one ray that the kernels reuse at every node and leaf.
-struct SingleRay {
-  WatertightRay wr;              // permutation kx, ky, kz and shear sx, sy, sz, exactly as the scalar test has them
-  float o[3], inv_d[3];
-  float inv_d_far[3];                // inv_d * kFarRound: the far planes' rounding folded into one multiply
-  uint32_t near_off[3], far_off[3];  // per axis, offset of the entry / exit plane array in a node (node_floats)
-  const float* leaf_data;            // TriangleLeaves::data
-
-  template <int N>
-  SingleRay(const Ray& ray, const TriangleLeaves& tris, std::integral_constant<int, N>) : wr(ray) {
-    for (int a = 0; a < 3; ++a) {
-      o[a] = ray.o[a];
-      inv_d[a] = 1.0f / ray.d[a];
-      inv_d_far[a] = inv_d[a] * kFarRound;
-      const bool neg = inv_d[a] < 0;  // as SlabRay: -0 gives -inf, i.e. "negative"
-      near_off[a] = bound_offset<N>(a, neg);
-      far_off[a] = bound_offset<N>(a, !neg);
-    }
-    leaf_data = tris.data.data();
-  }
-};
-
 // Slab test of all N children of `node`. Returns the hit children as bits and their entry distances in t_near.
 template <int N>
 HWY_INLINE uint32_t IntersectChildren(const WideNode<N>& node, const SingleRay& r, float t_max, float* t_near) {
   const hn::CappedTag<float, N> d;
   const size_t L = hn::Lanes(d);
   const float* nf = node_floats(node);
-  const auto ox = hn::Set(d, r.o[0]), oy = hn::Set(d, r.o[1]), oz = hn::Set(d, r.o[2]);
-  const auto ix = hn::Set(d, r.inv_d[0]), iy = hn::Set(d, r.inv_d[1]), iz = hn::Set(d, r.inv_d[2]);
-  const auto fx = hn::Set(d, r.inv_d_far[0]), fy = hn::Set(d, r.inv_d_far[1]), fz = hn::Set(d, r.inv_d_far[2]);
+  const auto ox = hn::Set(d, r.o(0)), oy = hn::Set(d, r.o(1)), oz = hn::Set(d, r.o(2));
+  const auto ix = hn::Set(d, r.inv_d(0)), iy = hn::Set(d, r.inv_d(1)), iz = hn::Set(d, r.inv_d(2));
+  const auto fx = hn::Set(d, r.inv_d_far(0)), fy = hn::Set(d, r.inv_d_far(1)), fz = hn::Set(d, r.inv_d_far(2));
   uint32_t bits = 0;
   for (size_t g = 0; g < size_t(N); g += L) {
-    const auto tx0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[0] + g), ox), ix);
-    const auto ty0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[1] + g), oy), iy);
-    const auto tz0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off[2] + g), oz), iz);
-    const auto tx1 = hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[0] + g), ox), fx);
-    const auto ty1 = hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[1] + g), oy), fy);
-    const auto tz1 = hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off[2] + g), oz), fz);
+    const auto tx0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off(0) + g), ox), ix);
+    const auto ty0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off(1) + g), oy), iy);
+    const auto tz0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off(2) + g), oz), iz);
+    const auto tx1 = hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off(0) + g), ox), fx);
+    const auto ty1 = hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off(1) + g), oy), fy);
+    const auto tz1 = hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off(2) + g), oz), fz);
     // A ray lying in a slab plane gives 0 * inf = NaN there; that slab must not constrain the interval (as in
     // SlabRay). Max(x, acc) / Min(x, acc) return acc when x is NaN on every target (x86 min/max return their
     // second operand, HWY_SCALAR the non-NaN one), so keep the accumulator second.
@@ -91,7 +70,8 @@ HWY_INLINE uint32_t IntersectChildren(const WideNode<N>& node, const SingleRay& 
 // Lanes of a leaf group whose edge functions hit exactly 0: the scalar test decides them (in double).
 template <bool kAny, class D>
 HWY_NOINLINE bool RetestZeroLanesSingle(D d, hn::Mask<D> zero, const TriangleLeaves& tris, uint32_t first,
-                                        uint32_t count, size_t at, const WatertightRay& wr, float* t_max, Hit* hit) {
+                                        uint32_t count, size_t at, const SingleRay& r, float* t_max, Hit* hit) {
+  const WatertightRay wr = r.watertight();  // built here, off the hot path
   bool found = false;
   for (uint32_t bits = MaskBits(d, zero); bits != 0; bits &= bits - 1) {
     const uint32_t i = uint32_t(at + size_t(__builtin_ctz(bits)));
@@ -114,18 +94,17 @@ HWY_INLINE bool IntersectLeaf(const TriangleLeaves& tris, uint32_t first, uint32
                               float* t_max, Hit* hit) {
   const hn::CappedTag<float, 8> d;
   const size_t L = hn::Lanes(d);
-  const WatertightRay& wr = r.wr;
-  const auto okx = hn::Set(d, wr.o[wr.kx]), oky = hn::Set(d, wr.o[wr.ky]), okz = hn::Set(d, wr.o[wr.kz]);
-  const auto sx = hn::Set(d, wr.sx), sy = hn::Set(d, wr.sy), sz = hn::Set(d, wr.sz);
+  const auto okx = hn::Set(d, r.ok(0)), oky = hn::Set(d, r.ok(1)), okz = hn::Set(d, r.ok(2));
+  const auto sx = hn::Set(d, r.s(0)), sy = hn::Set(d, r.s(1)), sz = hn::Set(d, r.s(2));
   bool found = false;
   // Run 3 * vertex + axis of the leaf starts at base + (3 * vertex + axis) * count: the ray's permuted axes pick
   // vertex 0's three runs, and vertices 1 and 2 lie 3 * count and 6 * count floats further (three multiplies per
   // leaf, and the rest fits x86 addressing modes).
   const float* const base = r.leaf_data + 9 * size_t(first);
   const size_t c = count, v1 = 3 * c, v2 = 6 * c;
-  const float* const px = base + size_t(wr.kx) * c;
-  const float* const py = base + size_t(wr.ky) * c;
-  const float* const pz = base + size_t(wr.kz) * c;
+  const float* const px = base + size_t(r.k(0)) * c;
+  const float* const py = base + size_t(r.k(1)) * c;
+  const float* const pz = base + size_t(r.k(2)) * c;
   for (uint32_t i = 0; i < count; i += uint32_t(L)) {
     // Loading L lanes from any position inside a leaf's run stays within the leaf data and its kLeafPadding tail.
     const size_t at = size_t(first) + i;
@@ -146,7 +125,8 @@ HWY_INLINE bool IntersectLeaf(const TriangleLeaves& tris, uint32_t first, uint32
       *hit = {*t_max, uint32_t(at + lane), hn::ExtractLane(lanes.b1, lane), hn::ExtractLane(lanes.b2, lane)};
       found = true;
     }
-    if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero)) && RetestZeroLanesSingle<kAny>(d, lanes.zero, tris, first, count, at, wr, t_max, hit)) {
+    if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero)) &&
+        RetestZeroLanesSingle<kAny>(d, lanes.zero, tris, first, count, at, r, t_max, hit)) {
       if constexpr (kAny) return true;
       found = true;
     }

@@ -20,6 +20,7 @@ struct WatertightRay {
   float sx, sy, sz;
   float t_max;
   bool valid;  // false for a zero or NaN direction
+  WatertightRay() = default;  // for callers that fill the fields from precomputed values
   explicit WatertightRay(const Ray& ray);
 };
 
