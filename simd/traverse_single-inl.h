@@ -87,16 +87,48 @@ HWY_NOINLINE bool RetestZeroLanesSingle(D d, hn::Mask<D> zero, const TriangleLea
   return found;
 }
 
+// Leaf triangles [i, i + lanes) of the leaf (first, count), whose runs for the ray's axes start at px, py, pz
+// (vertex 0; vertices 1 and 2 lie v1 and v2 floats further). As IntersectLeaf.
+template <bool kAny, class D>
+HWY_INLINE bool IntersectLeafGroup(D d, const TriangleLeaves& tris, uint32_t first, uint32_t count, uint32_t i,
+                                   const float* px, const float* py, const float* pz, size_t v1, size_t v2,
+                                   const SingleRay& r, float* t_max, Hit* hit) {
+  // Broadcast here rather than once per leaf: most leaves are one group, and values kept across the loop below
+  // were spilled and reloaded.
+  const auto okx = hn::Set(d, r.ok(0)), oky = hn::Set(d, r.ok(1)), okz = hn::Set(d, r.ok(2));
+  // Loading L lanes from any position inside a leaf's run stays within the leaf data and its kLeafPadding tail.
+  const size_t at = size_t(first) + i;
+  auto lanes = WatertightTest(
+      d, hn::Sub(hn::LoadU(d, px + i), okx), hn::Sub(hn::LoadU(d, py + i), oky), hn::Sub(hn::LoadU(d, pz + i), okz),
+      hn::Sub(hn::LoadU(d, px + v1 + i), okx), hn::Sub(hn::LoadU(d, py + v1 + i), oky),
+      hn::Sub(hn::LoadU(d, pz + v1 + i), okz), hn::Sub(hn::LoadU(d, px + v2 + i), okx),
+      hn::Sub(hn::LoadU(d, py + v2 + i), oky), hn::Sub(hn::LoadU(d, pz + v2 + i), okz), hn::Set(d, r.s(0)),
+      hn::Set(d, r.s(1)), hn::Set(d, r.s(2)), hn::Set(d, *t_max), hn::FirstN(d, count - i));
+  bool found = false;
+  if (!hn::AllFalse(d, lanes.hit)) ResolveHits(d, hn::Set(d, *t_max), lanes);
+  if (!hn::AllFalse(d, lanes.hit)) {
+    if constexpr (kAny) return true;
+    // Closest lane; on equal t the first in leaf order, as a sequential scalar loop would keep.
+    const auto t = hn::IfThenElse(lanes.hit, lanes.t, hn::Set(d, kInfinity));
+    const auto t_min = hn::MinOfLanes(d, t);
+    const size_t lane = size_t(hn::FindFirstTrue(d, hn::Eq(t, t_min)));
+    *t_max = hn::GetLane(t_min);
+    *hit = {*t_max, uint32_t(at + lane), hn::ExtractLane(lanes.b1, lane), hn::ExtractLane(lanes.b2, lane)};
+    found = true;
+  }
+  if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero)) &&
+      RetestZeroLanesSingle<kAny>(d, lanes.zero, tris, first, count, at, r, t_max, hit))
+    found = true;
+  return found;
+}
+
 // Tests leaf triangles [first, first + count) (lanes = triangles). Closest hit: shrinks *t_max and fills *hit
 // with the closest hit closer than *t_max. Any hit: returns at the first hit.
 template <bool kAny>
 HWY_INLINE bool IntersectLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t count, const SingleRay& r,
                               float* t_max, Hit* hit) {
   const hn::CappedTag<float, 8> d;
-  const size_t L = hn::Lanes(d);
-  const auto okx = hn::Set(d, r.ok(0)), oky = hn::Set(d, r.ok(1)), okz = hn::Set(d, r.ok(2));
-  const auto sx = hn::Set(d, r.s(0)), sy = hn::Set(d, r.s(1)), sz = hn::Set(d, r.s(2));
-  bool found = false;
+  const uint32_t L = uint32_t(hn::Lanes(d));
   // Run 3 * vertex + axis of the leaf starts at base + (3 * vertex + axis) * count: the ray's permuted axes pick
   // vertex 0's three runs, and vertices 1 and 2 lie 3 * count and 6 * count floats further (three multiplies per
   // leaf, and the rest fits x86 addressing modes).
@@ -105,28 +137,11 @@ HWY_INLINE bool IntersectLeaf(const TriangleLeaves& tris, uint32_t first, uint32
   const float* const px = base + size_t(r.k(0)) * c;
   const float* const py = base + size_t(r.k(1)) * c;
   const float* const pz = base + size_t(r.k(2)) * c;
-  for (uint32_t i = 0; i < count; i += uint32_t(L)) {
-    // Loading L lanes from any position inside a leaf's run stays within the leaf data and its kLeafPadding tail.
-    const size_t at = size_t(first) + i;
-    auto lanes = WatertightTest(
-        d, hn::Sub(hn::LoadU(d, px + i), okx), hn::Sub(hn::LoadU(d, py + i), oky),
-        hn::Sub(hn::LoadU(d, pz + i), okz), hn::Sub(hn::LoadU(d, px + v1 + i), okx),
-        hn::Sub(hn::LoadU(d, py + v1 + i), oky), hn::Sub(hn::LoadU(d, pz + v1 + i), okz),
-        hn::Sub(hn::LoadU(d, px + v2 + i), okx), hn::Sub(hn::LoadU(d, py + v2 + i), oky),
-        hn::Sub(hn::LoadU(d, pz + v2 + i), okz), sx, sy, sz, hn::Set(d, *t_max), hn::FirstN(d, count - i));
-    if (!hn::AllFalse(d, lanes.hit)) ResolveHits(d, hn::Set(d, *t_max), lanes);
-    if (!hn::AllFalse(d, lanes.hit)) {
-      if constexpr (kAny) return true;
-      // Closest lane; on equal t the first in leaf order, as a sequential scalar loop would keep.
-      const auto t = hn::IfThenElse(lanes.hit, lanes.t, hn::Set(d, kInfinity));
-      const auto t_min = hn::MinOfLanes(d, t);
-      const size_t lane = size_t(hn::FindFirstTrue(d, hn::Eq(t, t_min)));
-      *t_max = hn::GetLane(t_min);
-      *hit = {*t_max, uint32_t(at + lane), hn::ExtractLane(lanes.b1, lane), hn::ExtractLane(lanes.b2, lane)};
-      found = true;
-    }
-    if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero)) &&
-        RetestZeroLanesSingle<kAny>(d, lanes.zero, tris, first, count, at, r, t_max, hit)) {
+  // The first group apart from the loop: with 8 lanes it is the whole leaf (max_leaf_size 8 by default).
+  bool found = IntersectLeafGroup<kAny>(d, tris, first, count, 0, px, py, pz, v1, v2, r, t_max, hit);
+  if (kAny && found) return true;
+  for (uint32_t i = L; i < count; i += L) {
+    if (IntersectLeafGroup<kAny>(d, tris, first, count, i, px, py, pz, v1, v2, r, t_max, hit)) {
       if constexpr (kAny) return true;
       found = true;
     }
