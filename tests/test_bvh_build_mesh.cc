@@ -156,9 +156,13 @@ TEST_CASE("bvh_build: dragon fits 64 bytes per triangle and traces like the refe
   const TriangleLeaves leaves = make_triangle_leaves(bvh, mesh);
   const BvhStats s = bvh_stats(bvh);
   const double n = double(mesh.triangle_count());
+  // The budget counts nodes, leaf triangles and the mesh. Not counted: prim_indices (4 B/tri), the leaf-order to
+  // mesh-order permutation the renderer keeps to find a hit triangle's normals and uvs; with it the total is
+  // 67.2 B/tri, over the budget until the mesh itself is stored in leaf order (see accel/bvh_build.h).
   const double total = (double(s.node_bytes) + double(leaves.memory_bytes())) / n + mesh_bytes_per_tri(mesh);
   INFO("nodes " << double(s.node_bytes) / n << " B/tri, leaves " << double(leaves.memory_bytes()) / n
-                << " B/tri, mesh " << mesh_bytes_per_tri(mesh) << " B/tri, total " << total);
+                << " B/tri, mesh " << mesh_bytes_per_tri(mesh) << " B/tri, total " << total << " (+ prim_indices "
+                << double(bvh.prim_indices.size() * sizeof(uint32_t)) / n << " B/tri)");
   CHECK(s.primitives == mesh.triangle_count());
   CHECK(double(s.node_bytes) / n <= 10.0);
   CHECK(total <= 64.0);
