@@ -235,14 +235,19 @@ HWY_INLINE uint32_t IntervalChildren(const WideNode<N>& node, const Packet<P>& p
 // Occupied child slots, and leaf children, as bits.
 template <int N>
 HWY_INLINE uint32_t NonEmptyChildren(const WideNode<N>& node) {
+  // A vector compare: the scalar loop over the N children cost ~65 instructions per node visit (callgrind).
+  const hn::CappedTag<uint32_t, N> du;
   uint32_t bits = 0;
-  for (int c = 0; c < N; ++c) bits |= (node.child[c] != kEmptyChild ? 1u : 0u) << c;
+  for (size_t g = 0; g < size_t(N); g += hn::Lanes(du))
+    bits |= MaskBits(du, hn::Ne(hn::LoadU(du, node.child + g), hn::Set(du, kEmptyChild))) << g;
   return bits;
 }
 template <int N>
 HWY_INLINE uint32_t LeafChildren(const WideNode<N>& node) {
+  const hn::CappedTag<uint8_t, N> d8;
   uint32_t bits = 0;
-  for (int c = 0; c < N; ++c) bits |= (node.leaf_count[c] != 0 ? 1u : 0u) << c;
+  for (size_t g = 0; g < size_t(N); g += hn::Lanes(d8))
+    bits |= MaskBits(d8, hn::Ne(hn::LoadU(d8, node.leaf_count + g), hn::Zero(d8))) << g;
   return bits;
 }
 
