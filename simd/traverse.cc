@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 
 #include "geometry/triangle.h"
@@ -71,6 +72,32 @@ void AnySingle(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& 
 
 }  // namespace
 
+// Block set-up against one-ray set-up, ray by ray (see traverse.h).
+size_t CountRaySetupMismatches(const RaySoA& rays, size_t count) {
+  size_t mismatches = 0;
+  RayBlock vec, one;
+  for (size_t first = 0; first < count; first += kRayBlock) {
+    const size_t n = std::min(kRayBlock, count - first);
+    SetupRays<8>(rays, first, n, vec);
+    one.valid = 0;
+    for (size_t j = 0; j < n; ++j) SetupRay<8>(ray_at(rays, first + j), one, j);
+    for (size_t j = 0; j < n; ++j) {
+      const bool valid = (vec.valid >> j) & 1;
+      bool same = valid == (((one.valid >> j) & 1) != 0);
+      const auto same_bits = [&](const auto& a, const auto& b) { return std::memcmp(&a, &b, sizeof(a)) == 0; };
+      for (int a = 0; valid && same && a < 3; ++a) {
+        same = same_bits(vec.o[a][j], one.o[a][j]) && same_bits(vec.inv_d[a][j], one.inv_d[a][j]) &&
+               same_bits(vec.inv_d_far[a][j], one.inv_d_far[a][j]) && vec.near_off[a][j] == one.near_off[a][j] &&
+               vec.far_off[a][j] == one.far_off[a][j] && vec.k[a][j] == one.k[a][j] &&
+               same_bits(vec.ok[a][j], one.ok[a][j]) && same_bits(vec.s[a][j], one.s[a][j]);
+      }
+      if (valid && same) same = same_bits(vec.t_max[j], one.t_max[j]);
+      mismatches += same ? 0 : 1;
+    }
+  }
+  return mismatches;
+}
+
 // Exported per target (HWY_EXPORT needs plain function names).
 void ClosestSingle4(const WideBvh<4>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, Hit* h) {
   ClosestSingle<4>(b, t, r, n, h);
@@ -97,6 +124,7 @@ HWY_EXPORT(ClosestSingle8);
 HWY_EXPORT(AnySingle4);
 HWY_EXPORT(AnySingle8);
 HWY_EXPORT(TraversalTarget);
+HWY_EXPORT(CountRaySetupMismatches);
 
 void intersect_closest(const WideBvh<4>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                        Hit* hits) {
@@ -115,6 +143,10 @@ void intersect_any(const WideBvh<8>& bvh, const TriangleLeaves& tris, const RayS
   HWY_DYNAMIC_DISPATCH(AnySingle8)(bvh, tris, rays, count, occluded);
 }
 const char* traversal_target_name() { return hwy::TargetName(HWY_DYNAMIC_DISPATCH(TraversalTarget)()); }
+
+size_t traverse_detail::count_ray_setup_mismatches(const RaySoA& rays, size_t count) {
+  return HWY_DYNAMIC_DISPATCH(CountRaySetupMismatches)(rays, count);
+}
 
 }  // namespace torte
 #endif  // HWY_ONCE

@@ -55,4 +55,11 @@ void intersect_any_packets(const WideBvh<8>& bvh, const TriangleLeaves& tris, co
 // Name of the Highway target the traversal kernels dispatch to on this CPU (e.g. "AVX3", "AVX2", "SCALAR").
 const char* traversal_target_name();
 
+namespace traverse_detail {
+// For tests: how many of rays [0, count) get different per-ray constants (validity, or any bit of a valid ray's
+// origin, inverse direction, plane offsets, watertight axes, shear) from the single-ray kernel's block set-up
+// (vector ops across 16 rays, simd/single_ray-inl.h) than from the one-ray scalar set-up. 0 when consistent.
+size_t count_ray_setup_mismatches(const RaySoA& rays, size_t count);
+}  // namespace traverse_detail
+
 }  // namespace torte
