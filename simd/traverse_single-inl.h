@@ -152,16 +152,15 @@ HWY_INLINE bool IntersectLeaf(const TriangleLeaves& tris, uint32_t first, uint32
 // Software prefetch of a node (all its cache lines) or of a leaf's triangle block.
 template <int N>
 HWY_INLINE void Prefetch(const WideBvh<N>& bvh, const SingleRay& r, uint32_t ref, uint32_t count) {
-  const char* p;
-  size_t bytes;
-  if (ref & kLeafFlag) {
-    p = reinterpret_cast<const char*>(r.leaf_data + 9 * size_t(ref & ~kLeafFlag));
-    bytes = 36 * size_t(count);
-  } else {
-    p = reinterpret_cast<const char*>(&bvh.nodes[ref]);
-    bytes = sizeof(WideNode<N>);
+  if (!(ref & kLeafFlag)) {
+    // A node is whole, aligned cache lines: no loop.
+    const char* p = reinterpret_cast<const char*>(&bvh.nodes[ref]);
+    static_assert(sizeof(WideNode<N>) % 64 == 0 && alignof(WideNode<N>) == 64);
+    for (size_t line = 0; line < sizeof(WideNode<N>); line += 64) __builtin_prefetch(p + line);
+    return;
   }
-  const uintptr_t end = reinterpret_cast<uintptr_t>(p) + bytes;
+  const char* p = reinterpret_cast<const char*>(r.leaf_data + 9 * size_t(ref & ~kLeafFlag));
+  const uintptr_t end = reinterpret_cast<uintptr_t>(p) + 36 * size_t(count);
   for (uintptr_t a = reinterpret_cast<uintptr_t>(p) & ~uintptr_t(63); a < end; a += 64)
     __builtin_prefetch(reinterpret_cast<const void*>(a));
 }
