@@ -33,7 +33,7 @@ namespace {
 // Rays per block: a multiple of every target's float lane count (at most 16).
 constexpr size_t kRayBlock = 16;
 
-// Constants of up to kRayBlock rays, structure of arrays (index = ray): 1,600 bytes, 64-byte aligned arrays.
+// Constants of up to kRayBlock rays, structure of arrays (index = ray), 64-byte aligned arrays: 1,664 bytes.
 struct RayBlock {
   alignas(64) float o[3][kRayBlock];          // origin
   alignas(64) float inv_d[3][kRayBlock];      // 1 / direction (-0 gives -inf)
@@ -46,6 +46,7 @@ struct RayBlock {
   alignas(64) float t_max[kRayBlock];
   uint32_t valid = 0;  // bit j: ray j can hit something (traverse_detail::is_valid_ray)
 };
+static_assert(sizeof(RayBlock) == 1664);
 
 // One ray of a RayBlock, as the kernel sees it.
 struct SingleRay {

@@ -3,10 +3,11 @@
 // traverse-inl.h inside a file compiled with foreach_target and without FMA contraction (see traverse.cc).
 // Nodes: lanes = children. One slab test per axis covers all N children (CappedTag<float, N>; targets narrower
 // than N loop over lane groups); near/far planes are picked per ray by the direction's signs, so the node test is
-// SlabRay::hits of accel/bvh2.h with the far rounding folded into the inverse direction (as conservative). Hit children are sorted far to near and pushed, and the
-// nearest is visited next; popped entries starting beyond the closest hit so far are skipped. The second nearest
-// (the likeliest next pop) is prefetched when pushed: about +4 % on diffuse rays (2026-11-22; prefetching every
-// pushed child, or the next stack entry at each pop, measured no better).
+// SlabRay::hits of accel/bvh2.h with the far rounding folded into the inverse direction (as conservative). Hit
+// children are sorted far to near and pushed, and the nearest is visited next; popped entries starting beyond the
+// closest hit so far are skipped. The second nearest (the likeliest next pop) is prefetched when pushed: about
+// +4 % on diffuse rays (2026-11-22; prefetching every pushed child, or the next stack entry at each pop, measured
+// no better). The per-ray constants come from single_ray-inl.h, computed for 16 rays at a time.
 // Leaves: lanes = triangles, loaded straight from the leaf's SoA runs (LoadU + FirstN), with the watertight test
 // of traverse-inl.h; lanes where an edge function is exactly 0 are re-tested by the scalar intersect_triangle,
 // which falls back to double precision there.
