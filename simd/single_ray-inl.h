@@ -18,9 +18,7 @@
 
 #include <hwy/highway.h>
 
-#include <algorithm>
 #include <cstdint>
-#include <cstring>
 
 #include "accel/hit.h"
 #include "geometry/triangle.h"
@@ -99,13 +97,6 @@ HWY_INLINE void SetupRay(const Ray& ray, RayBlock& b, size_t j) {
   b.valid |= uint32_t(traverse_detail::is_valid_ray(ray)) << j;
 }
 
-// Lane-wise v[k]: picks x, y or z by the axis index k (0, 1, 2).
-template <class D, class DI, class V = hn::Vec<D>>
-HWY_INLINE V SelectAxis(D d, DI di, hn::Vec<DI> k, V x, V y, V z) {
-  return hn::IfThenElse(hn::RebindMask(d, hn::Eq(k, hn::Zero(di))), x,
-                        hn::IfThenElse(hn::RebindMask(d, hn::Eq(k, hn::Set(di, 1))), y, z));
-}
-
 // Entries [0, n) of `b` from rays [first, first + n) of `rays` (n <= kRayBlock), kRayBlock / lanes vectors.
 template <int N>
 HWY_INLINE void SetupRays(const RaySoA& rays, size_t first, size_t n, RayBlock& b) {
@@ -113,17 +104,9 @@ HWY_INLINE void SetupRays(const RaySoA& rays, size_t first, size_t n, RayBlock& 
   const hn::RebindToSigned<decltype(d)> di;
   const hn::RebindToUnsigned<decltype(d)> du;
   const size_t L = hn::Lanes(d);
-  const float* src[7] = {rays.ox + first, rays.oy + first, rays.oz + first, rays.dx + first,
-                         rays.dy + first, rays.dz + first, rays.t_max + first};
   alignas(64) float tail[7][kRayBlock];
-  if (n < kRayBlock) {
-    // A short last block: copy it, padded with zero rays (invalid), so every vector load stays in bounds.
-    for (int c = 0; c < 7; ++c) {
-      std::fill(tail[c], tail[c] + kRayBlock, 0.0f);
-      std::memcpy(tail[c], src[c], n * sizeof(float));
-      src[c] = tail[c];
-    }
-  }
+  const float* src[7];
+  traverse_detail::ray_sources(rays, first, n, tail, src);  // a short last block: padding rays are invalid
   const auto zero = hn::Zero(d);
   const auto one = hn::Set(d, 1.0f);
   uint32_t valid = 0;
@@ -132,31 +115,8 @@ HWY_INLINE void SetupRays(const RaySoA& rays, size_t first, size_t n, RayBlock& 
     const hn::Vec<decltype(d)> dir[3] = {hn::LoadU(d, src[3] + g), hn::LoadU(d, src[4] + g),
                                          hn::LoadU(d, src[5] + g)};
     const auto t_max = hn::LoadU(d, src[6] + g);
-    // traverse_detail::is_valid_ray: finite origin and direction, a non-zero direction, t_max > 0 (false for NaN).
-    auto ok_ray = hn::And(hn::And(hn::IsFinite(o[0]), hn::IsFinite(o[1])), hn::IsFinite(o[2]));
-    ok_ray = hn::And(ok_ray, hn::And(hn::And(hn::IsFinite(dir[0]), hn::IsFinite(dir[1])), hn::IsFinite(dir[2])));
-    const auto zero_dir = hn::And(hn::And(hn::Eq(dir[0], zero), hn::Eq(dir[1], zero)), hn::Eq(dir[2], zero));
-    ok_ray = hn::AndNot(zero_dir, hn::And(ok_ray, hn::Gt(t_max, zero)));
-    valid |= MaskBits(d, ok_ray) << g;
-
-    // WatertightRay: kz = max_dimension(abs(d)), kx and ky cyclically after it, swapped for a negative d[kz].
-    const auto ax = hn::Abs(dir[0]), ay = hn::Abs(dir[1]), az = hn::Abs(dir[2]);
-    const auto x_over_y = hn::Gt(ax, ay);
-    const auto kz_is_z = hn::Not(hn::Gt(hn::IfThenElse(x_over_y, ax, ay), az));
-    const auto kz = hn::IfThenElse(hn::RebindMask(di, kz_is_z), hn::Set(di, 2),
-                                   hn::IfThenElse(hn::RebindMask(di, x_over_y), hn::Zero(di), hn::Set(di, 1)));
-    const auto two = hn::Set(di, 2);
-    const auto next_x = hn::IfThenElse(hn::Eq(kz, two), hn::Zero(di), hn::Add(kz, hn::Set(di, 1)));
-    const auto next_y = hn::IfThenElse(hn::Eq(next_x, two), hn::Zero(di), hn::Add(next_x, hn::Set(di, 1)));
-    const auto dz = SelectAxis(d, di, kz, dir[0], dir[1], dir[2]);
-    const auto flip = hn::RebindMask(di, hn::Lt(dz, zero));
-    const auto kx = hn::IfThenElse(flip, next_y, next_x);
-    const auto ky = hn::IfThenElse(flip, next_x, next_y);
-    const hn::Vec<decltype(di)> k[3] = {kx, ky, kz};
-    hn::Store(hn::Div(SelectAxis(d, di, kx, dir[0], dir[1], dir[2]), dz), d, b.s[0] + g);
-    hn::Store(hn::Div(SelectAxis(d, di, ky, dir[0], dir[1], dir[2]), dz), d, b.s[1] + g);
-    hn::Store(hn::Div(one, dz), d, b.s[2] + g);
-
+    valid |= MaskBits(d, ValidRayLanes(d, o[0], o[1], o[2], dir[0], dir[1], dir[2], t_max)) << g;
+    const auto w = SetupWatertight(d, dir[0], dir[1], dir[2]);
     for (int a = 0; a < 3; ++a) {
       hn::Store(o[a], d, b.o[a] + g);
       const auto inv = hn::Div(one, dir[a]);
@@ -167,8 +127,11 @@ HWY_INLINE void SetupRays(const RaySoA& rays, size_t first, size_t n, RayBlock& 
       const auto hi = hn::Set(du, traverse_detail::bound_offset<N>(a, true));
       hn::Store(hn::IfThenElse(neg, hi, lo), du, b.near_off[a] + g);
       hn::Store(hn::IfThenElse(neg, lo, hi), du, b.far_off[a] + g);
-      hn::Store(k[a], di, b.k[a] + g);
-      hn::Store(SelectAxis(d, di, k[a], o[0], o[1], o[2]), d, b.ok[a] + g);
+      const auto is0 = w.axis_is[a][0], is1 = w.axis_is[a][1];
+      hn::Store(Pick(hn::RebindMask(di, is0), hn::RebindMask(di, is1), hn::Zero(di), hn::Set(di, 1), hn::Set(di, 2)),
+                di, b.k[a] + g);
+      hn::Store(Pick(is0, is1, o[0], o[1], o[2]), d, b.ok[a] + g);
+      hn::Store(w.s[a], d, b.s[a] + g);
     }
     hn::Store(t_max, d, b.t_max + g);
   }

@@ -32,6 +32,19 @@ inline bool is_valid_ray(const Ray& ray) {
   return ray.t_max > 0;  // false for NaN too
 }
 
+// The seven arrays of rays [begin, begin + n) for loads of P lanes: the caller's arrays when n == P, else copies
+// in `tail` padded with zero rays (t_max = 0: invalid), so every P-lane load stays in bounds.
+template <size_t P>
+inline void ray_sources(const RaySoA& rays, size_t begin, size_t n, float (&tail)[7][P], const float* (&src)[7]) {
+  const float* arrays[7] = {rays.ox, rays.oy, rays.oz, rays.dx, rays.dy, rays.dz, rays.t_max};
+  for (int c = 0; c < 7; ++c) {
+    src[c] = arrays[c] + begin;
+    if (n == P) continue;
+    for (size_t i = 0; i < P; ++i) tail[c][i] = i < n ? src[c][i] : 0.0f;
+    src[c] = tail[c];
+  }
+}
+
 // Offsets (in floats, from the start of a WideNode<N>) of the six child-bound arrays, which lie back to back.
 template <int N>
 constexpr uint32_t bound_offset(int axis, bool hi) {
@@ -71,6 +84,52 @@ HWY_INLINE uint32_t MaskBits(D d, hn::Mask<D> m) {
   uint32_t bits;
   std::memcpy(&bits, bytes, sizeof(bits));
   return bits;
+}
+
+// Selects per lane: m0 ? x : m1 ? y : z.
+template <class M, class V>
+HWY_INLINE V Pick(M m0, M m1, V x, V y, V z) {
+  return hn::IfThenElse(m0, x, hn::IfThenElse(m1, y, z));
+}
+
+// Lanes holding a valid ray: traverse_detail::is_valid_ray, lane by lane.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE hn::Mask<D> ValidRayLanes(D d, V ox, V oy, V oz, V dx, V dy, V dz, V t_max) {
+  const V zero = hn::Zero(d);
+  const auto finite = hn::And(hn::And(hn::And(hn::IsFinite(ox), hn::IsFinite(oy)), hn::IsFinite(oz)),
+                              hn::And(hn::And(hn::IsFinite(dx), hn::IsFinite(dy)), hn::IsFinite(dz)));
+  const auto zero_dir = hn::And(hn::And(hn::Eq(dx, zero), hn::Eq(dy, zero)), hn::Eq(dz, zero));
+  return hn::AndNot(zero_dir, hn::And(finite, hn::Gt(t_max, zero)));
+}
+
+// WatertightRay's constructor lane by lane, with the same axis choice, tie rule and divisions, so the vector
+// tests take the scalar test's decisions: kz = max_dimension(|d|) (x > y ? (x > z ? 0 : 2) : (y > z ? 1 : 2)),
+// kx = kz + 1, ky = kx + 1 (mod 3), kx and ky swapped when d[kz] < 0.
+template <class D>
+struct WatertightSetup {
+  hn::Mask<D> axis_is[3][2];  // axis_is[k][a]: the k-th permuted axis (kx, ky, kz) is a (a = 0, 1; neither: 2)
+  hn::Vec<D> s[3];            // shear sx, sy, sz
+};
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE WatertightSetup<D> SetupWatertight(D d, V dx, V dy, V dz) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  const auto ax = hn::Abs(dx), ay = hn::Abs(dy), az = hn::Abs(dz);
+  const auto x_gt_y = hn::Gt(ax, ay);
+  const auto kz0 = hn::And(x_gt_y, hn::Gt(ax, az)), kz1 = hn::AndNot(x_gt_y, hn::Gt(ay, az));
+  const auto kz2 = hn::Not(hn::Or(kz0, kz1));
+  const auto dkz = Pick(kz0, kz1, dx, dy, dz);
+  const auto flip = hn::Lt(dkz, zero);
+  WatertightSetup<D> w;
+  w.axis_is[0][0] = hn::Or(hn::AndNot(flip, kz2), hn::And(flip, kz1));
+  w.axis_is[0][1] = hn::Or(hn::AndNot(flip, kz0), hn::And(flip, kz2));
+  w.axis_is[1][0] = hn::Or(hn::AndNot(flip, kz1), hn::And(flip, kz2));
+  w.axis_is[1][1] = hn::Or(hn::AndNot(flip, kz2), hn::And(flip, kz0));
+  w.axis_is[2][0] = kz0;
+  w.axis_is[2][1] = kz1;
+  w.s[0] = hn::Div(Pick(w.axis_is[0][0], w.axis_is[0][1], dx, dy, dz), dkz);
+  w.s[1] = hn::Div(Pick(w.axis_is[1][0], w.axis_is[1][1], dx, dy, dz), dkz);
+  w.s[2] = hn::Div(one, dkz);
+  return w;
 }
 
 template <class D>

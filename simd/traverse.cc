@@ -16,7 +16,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <type_traits>
 
 #include "geometry/triangle.h"
 
@@ -31,11 +30,6 @@
 HWY_BEFORE_NAMESPACE();
 namespace torte::HWY_NAMESPACE {
 namespace {
-
-using traverse_detail::bound_offset;
-using traverse_detail::kFarRound;
-using traverse_detail::kMaxWideDepth;
-using traverse_detail::node_floats;
 
 // Rays a block at a time: the per-ray constants for the whole block with vector ops (single_ray-inl.h), then
 // each ray's traversal.

@@ -77,12 +77,6 @@ struct Packet {
   Ray ray(size_t i) const { return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, t_max[i]}; }
 };
 
-// Selects per lane: m0 ? x : m1 ? y : z.
-template <class M, class V>
-HWY_INLINE V Pick(M m0, M m1, V x, V y, V z) {
-  return hn::IfThenElse(m0, x, hn::IfThenElse(m1, y, z));
-}
-
 // Loads rays [begin, begin + n) (n <= P) into the packet: validity as traverse_detail::is_valid_ray decides it, and
 // the per-ray setup of the watertight test computed lane by lane exactly as WatertightRay's constructor does
 // (same axis choice and tie rule, same divisions), so the leaf test takes the scalar test's decisions.
@@ -90,15 +84,9 @@ template <int N, bool kIntervals, size_t P>
 HWY_INLINE void SetupPacket(Packet<P>& p, const RaySoA& rays, size_t begin, size_t n) {
   const hn::CappedTag<float, P> d;
   const size_t L = hn::Lanes(d);
-  const float* src[7] = {rays.ox + begin, rays.oy + begin, rays.oz + begin, rays.dx + begin,
-                         rays.dy + begin, rays.dz + begin, rays.t_max + begin};
   alignas(64) float tail[7][P];
-  if (n < P) {  // a partial packet: padded copies, whose padding lanes are invalid (t_max = 0)
-    for (int k = 0; k < 7; ++k) {
-      for (size_t i = 0; i < P; ++i) tail[k][i] = i < n ? src[k][i] : 0.0f;
-      src[k] = tail[k];
-    }
-  }
+  const float* src[7];
+  traverse_detail::ray_sources(rays, begin, n, tail, src);  // a partial packet: padding lanes are invalid
   const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   p.valid = 0;
   // Per-axis lane bits (lane i -> bit i) of the direction signs and of the permutation, and the interval bounds
@@ -112,10 +100,7 @@ HWY_INLINE void SetupPacket(Packet<P>& p, const RaySoA& rays, size_t begin, size
     auto ox = hn::LoadU(d, src[0] + g), oy = hn::LoadU(d, src[1] + g), oz = hn::LoadU(d, src[2] + g);
     auto dx = hn::LoadU(d, src[3] + g), dy = hn::LoadU(d, src[4] + g), dz = hn::LoadU(d, src[5] + g);
     auto t_max = hn::LoadU(d, src[6] + g);
-    const auto finite = hn::And(hn::And(hn::And(hn::IsFinite(ox), hn::IsFinite(oy)), hn::IsFinite(oz)),
-                                hn::And(hn::And(hn::IsFinite(dx), hn::IsFinite(dy)), hn::IsFinite(dz)));
-    const auto zero_dir = hn::And(hn::And(hn::Eq(dx, zero), hn::Eq(dy, zero)), hn::Eq(dz, zero));
-    const auto valid = hn::AndNot(zero_dir, hn::And(finite, hn::Gt(t_max, zero)));
+    const auto valid = ValidRayLanes(d, ox, oy, oz, dx, dy, dz, t_max);
     p.valid |= MaskBits(d, valid) << g;
     // Invalid lanes become a harmless stand-in whose t_max = -inf keeps it out of every test.
     ox = hn::IfThenElseZero(valid, ox), oy = hn::IfThenElseZero(valid, oy), oz = hn::IfThenElseZero(valid, oz);
@@ -143,25 +128,12 @@ HWY_INLINE void SetupPacket(Packet<P>& p, const RaySoA& rays, size_t begin, size
       }
       t_hi = hn::Max(t_hi, t_max);  // invalid lanes hold -inf
     }
-    // WatertightRay: kz = max_dimension(|d|) (x > y ? (x > z ? 0 : 2) : (y > z ? 1 : 2)), kx = kz + 1,
-    // ky = kx + 1 (mod 3), kx and ky swapped when d[kz] < 0.
-    const auto ax = hn::Abs(dx), ay = hn::Abs(dy), az = hn::Abs(dz);
-    const auto x_gt_y = hn::Gt(ax, ay);
-    const auto kz0 = hn::And(x_gt_y, hn::Gt(ax, az)), kz1 = hn::AndNot(x_gt_y, hn::Gt(ay, az));
-    const auto kz2 = hn::Not(hn::Or(kz0, kz1));
-    const auto dkz = Pick(kz0, kz1, dx, dy, dz);
-    const auto flip = hn::Lt(dkz, zero);
-    const auto kx0 = hn::Or(hn::AndNot(flip, kz2), hn::And(flip, kz1));
-    const auto kx1 = hn::Or(hn::AndNot(flip, kz0), hn::And(flip, kz2));
-    const auto ky0 = hn::Or(hn::AndNot(flip, kz1), hn::And(flip, kz2));
-    const auto ky1 = hn::Or(hn::AndNot(flip, kz2), hn::And(flip, kz0));
-    hn::Store(hn::Div(Pick(kx0, kx1, dx, dy, dz), dkz), d, p.sx + g);
-    hn::Store(hn::Div(Pick(ky0, ky1, dx, dy, dz), dkz), d, p.sy + g);
-    hn::Store(hn::Div(one, dkz), d, p.sz + g);
-    hn::Store(Pick(kx0, kx1, ox, oy, oz), d, p.okx + g);
-    hn::Store(Pick(ky0, ky1, ox, oy, oz), d, p.oky + g);
-    hn::Store(Pick(kz0, kz1, ox, oy, oz), d, p.okz + g);
-    const hn::Mask<decltype(d)> axis_is[3][2] = {{kx0, kx1}, {ky0, ky1}, {kz0, kz1}};
+    const auto w = SetupWatertight(d, dx, dy, dz);
+    hn::Store(w.s[0], d, p.sx + g), hn::Store(w.s[1], d, p.sy + g), hn::Store(w.s[2], d, p.sz + g);
+    const auto& axis_is = w.axis_is;
+    hn::Store(Pick(axis_is[0][0], axis_is[0][1], ox, oy, oz), d, p.okx + g);
+    hn::Store(Pick(axis_is[1][0], axis_is[1][1], ox, oy, oz), d, p.oky + g);
+    hn::Store(Pick(axis_is[2][0], axis_is[2][1], ox, oy, oz), d, p.okz + g);
     for (int k = 0; k < 3; ++k)
       for (int a = 0; a < 2; ++a) {
         hn::Store(hn::VecFromMask(d, axis_is[k][a]), d, p.axis_is[k][a] + g);

@@ -23,7 +23,6 @@
 #include <hwy/highway.h>
 
 #include <cstdint>
-#include <type_traits>
 
 #include "accel/hit.h"
 #include "accel/wide_bvh.h"
