@@ -362,8 +362,9 @@ TEST_CASE("bvh_build: triangle leaves in leaf order, one block per leaf, padded"
   const WideBvh<8> bvh = build_wide_bvh<8>(bounds_of(verts));
   const TriangleLeaves l = make_triangle_leaves(bvh, verts, false);
   REQUIRE(l.size() == 300);
-  CHECK(l.memory_bytes() == (9 * 300 + TriangleLeaves::kLeafPadding) * 4);
+  CHECK(l.memory_bytes() == (9 * 300 + TriangleLeaves::kLeafPadding) * 4 + 5 * 8);  // + leaf-start bitmap
   REQUIRE(l.data.size() == 9 * 300 + TriangleLeaves::kLeafPadding);
+  REQUIRE(l.leaf_starts.size() == 5);
   // Every leaf (first, count) holds its triangles as nine runs of count floats from 9 * first.
   size_t seen = 0;
   for (const WideNode<8>& n : bvh.nodes)
@@ -376,6 +377,13 @@ TEST_CASE("bvh_build: triangle leaves in leaf order, one block per leaf, padded"
         const uint32_t t = bvh.prim_indices[i];
         CHECK((p0 == verts[3 * t] && p1 == verts[3 * t + 1] && p2 == verts[3 * t + 2]));
         for (int r = 0; r < 9; ++r) CHECK(l.run(first, count, r)[i - first] == verts[3 * t + r / 3][r % 3]);
+        // From the leaf-order index alone (the leaf-start bitmap).
+        uint32_t f = 0, k = 0;
+        l.leaf_of(i, &f, &k);
+        CHECK((f == first && k == count));
+        Vec3f q[3];
+        l.triangle(i, q);
+        CHECK((q[0] == p0 && q[1] == p1 && q[2] == p2));
       }
     }
   CHECK(seen == 300);
@@ -391,6 +399,31 @@ TEST_CASE("bvh_build: triangle leaves in leaf order, one block per leaf, padded"
   CHECK_THROWS_WITH(make_triangle_leaves(bad, verts), Catch::Contains("out of range"));
   CHECK_THROWS_WITH(make_triangle_leaves(bad, mesh), Catch::Contains("out of range"));
   CHECK_THROWS_AS(make_triangle_leaves(bvh, std::span<const Vec3f>(verts.data(), 4)), Error);
+}
+
+TEST_CASE("bvh_build: leaf_of finds leaves that span bitmap words", "[bvh_build]") {
+  // Leaves of 1, 63, 2, 200 (four words), 1 and 255 triangles: starts at 0, 1, 64, 66, 266, 267; 522 in all.
+  const std::vector<uint32_t> sizes{1, 63, 2, 200, 1, 255};
+  TriangleLeaves l;
+  uint32_t n = 0;
+  for (uint32_t s : sizes) n += s;
+  l.data.assign(9 * size_t(n) + TriangleLeaves::kLeafPadding, 0.0f);
+  l.leaf_starts.assign((n + 63) / 64, 0);
+  std::vector<std::pair<uint32_t, uint32_t>> expect;  // (first, count) per triangle
+  uint32_t first = 0;
+  for (uint32_t s : sizes) {
+    l.leaf_starts[first / 64] |= uint64_t(1) << (first % 64);
+    for (uint32_t i = 0; i < s; ++i) expect.emplace_back(first, s);
+    first += s;
+  }
+  REQUIRE(l.size() == n);
+  for (uint32_t i = 0; i < n; ++i) {
+    uint32_t f = 0, c = 0;
+    l.leaf_of(i, &f, &c);
+    INFO("triangle " << i);
+    CHECK(f == expect[i].first);
+    CHECK(c == expect[i].second);
+  }
 }
 
 TEST_CASE("bvh_build: invalid options and infinite bounds are reported", "[bvh_build]") {

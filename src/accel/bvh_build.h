@@ -46,10 +46,10 @@ enum class CollapseMode {
   LargestArea,
 };
 
-// Memory on the 100k-triangle dragon at the defaults: N = 8 nodes 9.2 B/tri, leaves 36.0, mesh indices + normals
-// 18.0 (positions live in the leaves), total 63.2 (test_bvh_build_mesh.cc checks <= 64), plus prim_indices 4.0
-// (leaf order -> mesh triangle), which that total leaves out: 67.2 with it, over the issue "SIMD core" budget of
-// 64 until meshes are stored in leaf order (or nodes quantized). Per-triangle SAH leaf costs (block 1) make
+// Memory on the 100k-triangle dragon at the defaults: N = 8 nodes 9.2 B/tri, leaves 36.0 (+ 0.1 leaf-start
+// bitmap). prim_indices (4.0) is needed only until a renderer has put its meshes in leaf order, which
+// GeometrySet does (scene/geometry_set.h): the finished scene holds 63.2 B/tri with the mesh's indices and normals
+// (test_geometry_set.cc checks <= 64, the issue "SIMD core" budget). Per-triangle SAH leaf costs (block 1) make
 // leaves of 1.8 triangles on average and 29 B/tri of nodes; leaf_block_size = 8 gives 6.8 B/tri but a 7 % higher
 // SAH cost.
 struct BvhBuildOptions {

@@ -1,7 +1,5 @@
 // Collapse of the binary BVH into WideBvh<N> (SAH-optimal dynamic programming or the greedy largest-area rule),
-// the wide tree's SAH cost and statistics, and triangle leaves. See bvh_build.h.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+// the wide tree's SAH cost and statistics. See bvh_build.h; triangle leaves are in triangle_leaves.cc.
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
@@ -9,7 +7,6 @@
 
 #include "accel/bvh_build.h"
 #include "core/error.h"
-#include "geometry/mesh.h"
 
 namespace torte {
 namespace {
@@ -306,72 +303,6 @@ BvhStats bvh_stats(const WideBvh<N>& bvh) {
   return s;
 }
 
-namespace {
-
-template <int N, class Vertices>
-TriangleLeaves fill_leaves(const WideBvh<N>& bvh, bool parallel, Vertices&& vertices) {
-  TriangleLeaves leaves;
-  const std::span<const uint32_t> prim_indices = bvh.prim_indices;
-  const size_t n = prim_indices.size();
-  if (n == 0) return leaves;
-  // resize zero-fills, which also writes the padding.
-  leaves.data.resize(9 * n + TriangleLeaves::kLeafPadding, 0.0f);
-  float* const data = leaves.data.data();
-  // Every leaf is a slot of exactly one node: fill node by node.
-  auto fill = [&](size_t b, size_t e) {
-    for (size_t ni = b; ni < e; ++ni) {
-      const WideNode<N>& node = bvh.nodes[ni];
-      for (int c = 0; c < N; ++c) {
-        if (node.child[c] == kEmptyChild || !(node.child[c] & kLeafFlag)) continue;
-        const uint32_t first = node.child[c] & ~kLeafFlag, count = node.leaf_count[c];
-        if (size_t(first) + count > n) throw Error("Triangle leaves: a leaf lies outside prim_indices.");
-        float* const out = data + 9 * size_t(first);
-        for (uint32_t j = 0; j < count; ++j) {
-          Vec3f p[3];
-          vertices(prim_indices[first + j], p);
-          for (int k = 0; k < 3; ++k)
-            for (int a = 0; a < 3; ++a) out[size_t(3 * k + a) * count + j] = p[k][a];
-        }
-      }
-    }
-  };
-  const size_t nodes = bvh.nodes.size();
-  if (parallel && n > 16384) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes, 1024),
-                      [&](const tbb::blocked_range<size_t>& r) { fill(r.begin(), r.end()); });
-  } else {
-    fill(0, nodes);
-  }
-  return leaves;
-}
-
-void check_prims(std::span<const uint32_t> prim_indices, size_t triangles) {
-  for (uint32_t p : prim_indices)
-    if (p >= triangles)
-      throw Error("Triangle leaves: primitive " + std::to_string(p) + " is out of range (" +
-                  std::to_string(triangles) + " triangles).");
-}
-
-}  // namespace
-
-template <int N>
-TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, std::span<const Vec3f> vertices, bool parallel) {
-  if (vertices.size() % 3 != 0)
-    throw Error("Triangle leaves: " + std::to_string(vertices.size()) + " vertices is not three per triangle.");
-  check_prims(bvh.prim_indices, vertices.size() / 3);
-  return fill_leaves(bvh, parallel, [&](uint32_t t, Vec3f* p) {
-    for (int j = 0; j < 3; ++j) p[j] = vertices[3 * size_t(t) + j];
-  });
-}
-
-template <int N>
-TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, const TriangleMesh& mesh, bool parallel) {
-  check_prims(bvh.prim_indices, mesh.triangle_count());
-  return fill_leaves(bvh, parallel, [&](uint32_t t, Vec3f* p) {
-    for (int j = 0; j < 3; ++j) p[j] = mesh.position(mesh.indices[3 * size_t(t) + j]);
-  });
-}
-
 template WideBvh<4> collapse<4>(const BinaryBvh&, const BvhBuildOptions&);
 template WideBvh<8> collapse<8>(const BinaryBvh&, const BvhBuildOptions&);
 template WideBvh<4> build_wide_bvh<4>(std::span<const Bounds3f>, const BvhBuildOptions&);
@@ -380,9 +311,5 @@ template float sah_cost<4>(const WideBvh<4>&, const BvhBuildOptions&);
 template float sah_cost<8>(const WideBvh<8>&, const BvhBuildOptions&);
 template BvhStats bvh_stats<4>(const WideBvh<4>&);
 template BvhStats bvh_stats<8>(const WideBvh<8>&);
-template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, std::span<const Vec3f>, bool);
-template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, std::span<const Vec3f>, bool);
-template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, const TriangleMesh&, bool);
-template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, const TriangleMesh&, bool);
 
 }  // namespace torte

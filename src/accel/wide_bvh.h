@@ -47,11 +47,16 @@ struct WideBvh {
 // three cache lines, where nine separate arrays cost nine or more). Built from the tree by make_triangle_leaves,
 // whose leaves it follows. `data` ends with kLeafPadding zeros so a kernel may load a full vector (up to 16
 // lanes) from any position inside any run.
+//
+// These are the only copy of the positions a renderer needs (scene/geometry_set.h shades from them):
+// `leaf_starts` (one bit per triangle, 0.125 B/tri) marks the first triangle of every leaf, so triangle(i)
+// finds its leaf's run layout from the leaf-order index alone.
 struct TriangleLeaves {
   static constexpr size_t kLeafPadding = 16;
   std::vector<float> data;
+  std::vector<uint64_t> leaf_starts;  // bit i (word i / 64, bit i % 64): leaf-order triangle i starts a leaf
   size_t size() const { return data.empty() ? 0 : (data.size() - kLeafPadding) / 9; }
-  size_t memory_bytes() const { return data.size() * sizeof(float); }
+  size_t memory_bytes() const { return data.size() * sizeof(float) + leaf_starts.size() * sizeof(uint64_t); }
   // Start of run r of the leaf (first, count).
   const float* run(uint32_t first, uint32_t count, int r) const {
     return data.data() + 9 * size_t(first) + size_t(r) * count;
@@ -60,6 +65,14 @@ struct TriangleLeaves {
   Vec3f vertex(uint32_t first, uint32_t count, uint32_t i, int k) const {
     const size_t at = 9 * size_t(first) + size_t(3 * k) * count + (i - first);
     return {data[at], data[at + count], data[at + 2 * size_t(count)]};
+  }
+  // The leaf (first, count) holding leaf-order triangle i < size(), from leaf_starts.
+  void leaf_of(uint32_t i, uint32_t* first, uint32_t* count) const;
+  // The three vertices of leaf-order triangle i < size().
+  void triangle(uint32_t i, Vec3f p[3]) const {
+    uint32_t first, count;
+    leaf_of(i, &first, &count);
+    for (int k = 0; k < 3; ++k) p[k] = vertex(first, count, i, k);
   }
 };
 

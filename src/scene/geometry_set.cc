@@ -15,34 +15,36 @@ namespace {
 const std::vector<VoxelGridAccel> kNoGrids;
 }  // namespace
 
-void GeometrySet::build(const std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
+void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
                         uint32_t object_base) {
   build(meshes, quadrics, kNoGrids, object_base);
 }
 
-void GeometrySet::build(const std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
+void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
                         const std::vector<VoxelGridAccel>& grids, uint32_t object_base) {
   if (grids.size() > kMaxVoxelGridsPerSet) throw Error("more than 2048 voxel grids in one scene or group");
   grids_ = &grids;
   meshes_ = &meshes;
   quadrics_ = &quadrics;
   object_base_ = object_base;
-  tri_mesh_.clear();
-  mesh_first_.clear();
-  for (uint32_t m = 0; m < meshes.size(); ++m) {
-    mesh_first_.push_back(uint32_t(tri_mesh_.size()));
-    tri_mesh_.insert(tri_mesh_.end(), meshes[m].triangle_count(), m);
+  // The set's input numbering: mesh after mesh.
+  std::vector<uint32_t> mesh_first;
+  size_t input_triangles = 0;
+  for (const TriangleMesh& mesh : meshes) {
+    mesh_first.push_back(uint32_t(input_triangles));
+    input_triangles += mesh.triangle_count();
   }
+  if (input_triangles > kVoxelPrimBit) throw Error("more than 2^31 triangles in one scene or group");
   // Triangles: vertices per triangle, bounds, the wide BVH and its leaf-order vertex copy.
-  std::vector<Vec3f> vertices(size_t(triangle_count()) * 3);
-  std::vector<Bounds3f> tri_bounds(triangle_count());
+  std::vector<Vec3f> vertices(input_triangles * 3);
+  std::vector<Bounds3f> tri_bounds(input_triangles);
   // Parallel over meshes and, nested, over each mesh's triangles: one big mesh would otherwise run serially.
   tbb::parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
     const TriangleMesh& mesh = meshes[m];
     tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangle_count(), 8192),
                       [&](const tbb::blocked_range<size_t>& r) {
                         for (size_t t = r.begin(); t < r.end(); ++t) {
-                          const size_t g = mesh_first_[m] + t;
+                          const size_t g = mesh_first[m] + t;
                           for (int k = 0; k < 3; ++k) vertices[3 * g + k] = mesh.position(mesh.indices[3 * t + k]);
                           tri_bounds[g] = mesh.triangle_bounds(t);
                         }
@@ -50,11 +52,52 @@ void GeometrySet::build(const std::vector<TriangleMesh>& meshes, const std::vect
   });
   tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds);
   tri_leaves_ = make_triangle_leaves(tri_bvh_, vertices);
+  vertices = {};
+  store_in_leaf_order(meshes, mesh_first);
   std::vector<Bounds3f> quadric_bounds(quadrics.size());
   for (size_t q = 0; q < quadrics.size(); ++q) quadric_bounds[q] = world_bounds(quadrics[q]);
   quadric_bvh_.build(quadric_bounds);
   bounds_ = merge(tri_bvh_.bounds, quadric_bvh_.bounds());
   for (const VoxelGridAccel& g : grids) bounds_.extend(g.bounds());
+}
+
+// Rewrites every mesh's index triples in the order its triangles take in the leaves, then the set numbers its
+// triangles by leaf position: a hit needs no map back, and a set of one mesh needs no per-triangle table at all
+// (its triangle i is the mesh's triangle i). Triangles the tree left out (empty bounds: never hit) go last in
+// their mesh. The tree's prim_indices are dropped: the meshes now carry that order.
+void GeometrySet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first) {
+  const std::vector<uint32_t>& order = tri_bvh_.prim_indices;  // leaf position -> input triangle
+  triangle_count_ = uint32_t(order.size());
+  tri_mesh_.clear();
+  tri_local_.clear();
+  const bool one_mesh = meshes.size() == 1;
+  if (!one_mesh) {
+    tri_mesh_.resize(order.size());
+    tri_local_.resize(order.size());
+  }
+  std::vector<std::vector<uint32_t>> indices(meshes.size());
+  for (size_t m = 0; m < meshes.size(); ++m) indices[m].reserve(meshes[m].indices.size());
+  const size_t input_triangles = mesh_first.empty() ? 0 : mesh_first.back() + meshes.back().triangle_count();
+  std::vector<bool> placed(order.size() < input_triangles ? input_triangles : 0);
+  for (uint32_t i = 0; i < order.size(); ++i) {
+    const uint32_t g = order[i];
+    const uint32_t m = one_mesh ? 0 : uint32_t(std::upper_bound(mesh_first.begin(), mesh_first.end(), g) -
+                                                   mesh_first.begin() - 1);
+    const uint32_t* t = &meshes[m].indices[3 * size_t(g - mesh_first[m])];
+    if (!one_mesh) {
+      tri_mesh_[i] = m;
+      tri_local_[i] = uint32_t(indices[m].size() / 3);
+    }
+    indices[m].insert(indices[m].end(), t, t + 3);
+    if (!placed.empty()) placed[g] = true;
+  }
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    for (size_t t = 0; t < meshes[m].triangle_count() && !placed.empty(); ++t)
+      if (!placed[mesh_first[m] + t])
+        indices[m].insert(indices[m].end(), &meshes[m].indices[3 * t], &meshes[m].indices[3 * t + 3]);
+    meshes[m].indices = std::move(indices[m]);
+  }
+  tri_bvh_.prim_indices = {};
 }
 
 namespace {
@@ -96,9 +139,6 @@ void GeometrySet::intersect(const RaySoA& rays, size_t count, Hit* hits, bool co
     } else {
       intersect_closest(tri_bvh_, tri_leaves_, rays, count, hits);
     }
-    // The kernels report leaf order; the rest of the renderer numbers triangles per set.
-    for (size_t i = 0; i < count; ++i)
-      if (hits[i].prim != kNoHit) hits[i].prim = tri_bvh_.prim_indices[hits[i].prim];
   } else {
     std::fill(hits, hits + count, Hit{});
   }
@@ -173,7 +213,8 @@ size_t GeometrySet::accel_bytes() const {
   size_t grid_bytes = 0;
   for (uint32_t g = 0; g < grid_count(); ++g) grid_bytes += (*grids_)[g].bytes();
   return tri_bvh_.memory_bytes() + tri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
-         quadric_bvh_.prim_indices().size() * sizeof(uint32_t) + tri_mesh_.size() * sizeof(uint32_t) + grid_bytes;
+         quadric_bvh_.prim_indices().size() * sizeof(uint32_t) +
+         (tri_mesh_.size() + tri_local_.size()) * sizeof(uint32_t) + grid_bytes;
 }
 
 SurfaceHit GeometrySet::surface(const Hit& hit, const Ray* ray) const {
@@ -188,9 +229,13 @@ SurfaceHit GeometrySet::surface(const Hit& hit, const Ray* ray) const {
   const std::vector<TriangleMesh>& meshes = *meshes_;
   const std::vector<Quadric>& quadrics = *quadrics_;
   if (hit.prim < triangle_count()) {
-    const TriangleMesh& mesh = meshes[tri_mesh_[hit.prim]];
-    const uint32_t* idx = &mesh.indices[3 * size_t(hit.prim - mesh_first_[tri_mesh_[hit.prim]])];
-    const Vec3f p0 = mesh.position(idx[0]), p1 = mesh.position(idx[1]), p2 = mesh.position(idx[2]);
+    // Positions from the leaves (the meshes may have released theirs, scene/scene.h); normals and uvs from the
+    // mesh, whose triangles are in leaf order.
+    const TriangleMesh& mesh = meshes[tri_mesh_.empty() ? 0 : tri_mesh_[hit.prim]];
+    const uint32_t* idx = &mesh.indices[3 * size_t(tri_local_.empty() ? hit.prim : tri_local_[hit.prim])];
+    Vec3f p[3];
+    tri_leaves_.triangle(hit.prim, p);
+    const Vec3f p0 = p[0], p1 = p[1], p2 = p[2];
     const float b0 = 1 - hit.b1 - hit.b2;
     // Interpolating the vertices is more accurate than o + t d far from the origin.
     s.p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;

@@ -56,6 +56,21 @@ void Scene::finalize() {
   std::vector<float> power(lights.size());
   for (size_t i = 0; i < lights.size(); ++i) power[i] = light_power(*this, lights[i]);
   light_selection = lights.empty() ? Distribution1D() : Distribution1D(power);
+  release_positions();
+}
+
+// The geometry sets' leaves hold every triangle's vertices, and shading reads them there: a mesh keeps its own
+// positions only when an area light samples it. This is what brings a mesh to 64 bytes per triangle in all.
+void Scene::release_positions() {
+  auto release = [](TriangleMesh& m) {
+    m.x = {};
+    m.y = {};
+    m.z = {};
+  };
+  for (size_t i = 0; i < meshes.size(); ++i)
+    if (objects[i].area_light < 0) release(meshes[i]);
+  for (const auto& proto : prototypes)  // area lights are never instanced
+    for (TriangleMesh& m : proto->meshes) release(m);
 }
 
 bool Scene::intersect(Ray& ray, Hit* hit) const {

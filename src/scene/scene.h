@@ -52,6 +52,8 @@ class Scene {
  public:
   // The scene's own shapes in world space; object i is meshes[i] for i < meshes.size(), then quadrics, then
   // the objects of the prototypes (each prototype's objects numbered from its geometry's object base).
+  // finalize() reorders every mesh's triangles (geometry_set.h) and releases the positions of all meshes but
+  // area lights': from then on surface() is the way to a triangle's vertices.
   std::vector<TriangleMesh> meshes;
   std::vector<Quadric> quadrics;
   std::vector<VoxelGridAccel> grids;  // voxel grids: objects after the quadrics (voxel/voxel_accel.h)
@@ -105,6 +107,7 @@ class Scene {
 
  private:
   void intersect_instances(const RaySoA& rays, size_t count, Hit* hits) const;
+  void release_positions();
   GeometrySet root_;
   Bvh2 instance_bvh_;
   Bounds3f bounds_;

@@ -1,0 +1,191 @@
+// GeometrySet: triangles stored in leaf order (meshes reordered, positions read from the leaves), what a hit's
+// surface looks like afterwards, and the memory budget of a finished scene (issue "SIMD core": 64 B/triangle).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/rng.h"
+#include "geometry/mesh.h"
+#include "geometry/mesh_io.h"
+#include "geometry/triangle.h"
+#include "scene/geometry_set.h"
+#include "scene/scene.h"
+
+using namespace torte;
+
+namespace {
+
+const std::string kDragon = std::string(TORTE_SHARED_DATA) + "/meshes/dragon/dragon_100k_binary_le.ply";
+
+// A bumpy grid of (n x n) quads in the xy-plane at height z, with per-vertex normals and uvs that differ from
+// vertex to vertex, so a shading lookup through the wrong triangle shows.
+TriangleMesh grid_mesh(int n, float z, float seed) {
+  TriangleMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const float x = float(i) / float(n), y = float(j) / float(n);
+      m.add_vertex({x, y, z + 0.05f * std::sin(7 * x + seed) * std::cos(5 * y)});
+      m.nx.push_back(0.1f * std::sin(3 * x + seed));
+      m.ny.push_back(0.1f * std::cos(4 * y));
+      m.nz.push_back(1);
+      m.u.push_back(x * x + seed);
+      m.v.push_back(y);
+    }
+  const auto at = [n](int i, int j) { return uint32_t(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.add_triangle(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      m.add_triangle(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  return m;
+}
+
+// The closest hit among all triangles of `meshes` by brute force: mesh, triangle and the hit record.
+struct BruteHit {
+  int mesh = -1;
+  size_t tri = 0;
+  TriangleHit hit;
+};
+BruteHit brute_force(const std::vector<TriangleMesh>& meshes, Ray ray) {
+  BruteHit best;
+  for (size_t m = 0; m < meshes.size(); ++m)
+    for (size_t t = 0; t < meshes[m].triangle_count(); ++t) {
+      const uint32_t* idx = &meshes[m].indices[3 * t];
+      TriangleHit th;
+      if (!intersect_triangle(ray, meshes[m].position(idx[0]), meshes[m].position(idx[1]),
+                              meshes[m].position(idx[2]), &th))
+        continue;
+      ray.t_max = th.t;
+      best = {int(m), t, th};
+    }
+  return best;
+}
+
+// Shading normal and uv of a brute-force hit, interpolated from the original mesh.
+void reference_shading(const TriangleMesh& mesh, size_t tri, const TriangleHit& h, Vec3f* ns, Vec2f* uv) {
+  const uint32_t* idx = &mesh.indices[3 * tri];
+  const float b0 = 1 - h.b1 - h.b2;
+  *ns = normalize(mesh.normal(idx[0]) * b0 + mesh.normal(idx[1]) * h.b1 + mesh.normal(idx[2]) * h.b2);
+  *uv = Vec2f(mesh.u[idx[0]], mesh.v[idx[0]]) * b0 + Vec2f(mesh.u[idx[1]], mesh.v[idx[1]]) * h.b1 +
+        Vec2f(mesh.u[idx[2]], mesh.v[idx[2]]) * h.b2;
+}
+
+}  // namespace
+
+TEST_CASE("geometry_set: meshes in leaf order shade like the originals", "[geometry_set]") {
+  // Three stacked grids (one set of several meshes) and, separately, one grid alone (no index maps).
+  for (const bool several : {true, false}) {
+    std::vector<TriangleMesh> original;
+    original.push_back(grid_mesh(20, 0.0f, 0.0f));
+    if (several) {
+      original.push_back(grid_mesh(7, 0.5f, 1.0f));
+      original.push_back(grid_mesh(13, -0.5f, 2.0f));
+    }
+    std::vector<TriangleMesh> meshes = original;
+    const std::vector<Quadric> no_quadrics;
+    GeometrySet set;
+    set.build(meshes, no_quadrics, 10);
+    size_t total = 0;
+    for (size_t m = 0; m < meshes.size(); ++m) {
+      CHECK(meshes[m].indices.size() == original[m].indices.size());
+      total += original[m].triangle_count();
+    }
+    REQUIRE(set.triangle_count() == total);
+    // Every mesh holds the same triangles, in another order.
+    for (size_t m = 0; m < meshes.size(); ++m) {
+      auto sorted = [](const TriangleMesh& mesh) {
+        std::vector<std::array<uint32_t, 3>> t(mesh.triangle_count());
+        for (size_t i = 0; i < t.size(); ++i) t[i] = {mesh.indices[3 * i], mesh.indices[3 * i + 1], mesh.indices[3 * i + 2]};
+        std::sort(t.begin(), t.end());
+        return t;
+      };
+      CHECK(sorted(meshes[m]) == sorted(original[m]));
+      CHECK(meshes[m].indices != original[m].indices);
+    }
+    // The positions are not needed any more: the set shades from its leaves.
+    for (TriangleMesh& m : meshes) m.x = m.y = m.z = {};
+
+    Pcg32 rng(several ? 3 : 4);
+    int hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+      const Vec3f o(rng.next_float() * 1.2f - 0.1f, rng.next_float() * 1.2f - 0.1f, rng.next_float() < 0.5f ? 2.0f : -2.0f);
+      const Vec3f target(rng.next_float(), rng.next_float(), rng.next_float() - 0.5f);
+      const Ray ray{o, normalize(target - o)};
+      const BruteHit expect = brute_force(original, ray);
+      Hit h;
+      const bool got = set.intersect_one(ray, &h);
+      REQUIRE(got == (expect.mesh >= 0));
+      if (!got) continue;
+      ++hits;
+      INFO("ray " << i);
+      CHECK(h.t == expect.hit.t);
+      CHECK(set.object_of(h.prim) == 10 + uint32_t(expect.mesh));
+      const SurfaceHit s = set.surface(h);
+      CHECK(s.object == 10 + uint32_t(expect.mesh));
+      const Vec3f p = ray.o + ray.d * h.t;
+      CHECK(length(s.p - p) < 1e-4f);
+      Vec3f ns;
+      Vec2f uv;
+      reference_shading(original[size_t(expect.mesh)], expect.tri, expect.hit, &ns, &uv);
+      CHECK(length(s.ns - ns) < 1e-5f);
+      CHECK(std::fabs(s.uv.x - uv.x) < 1e-5f);
+      CHECK(std::fabs(s.uv.y - uv.y) < 1e-5f);
+    }
+    CHECK(hits > 1500);
+  }
+}
+
+TEST_CASE("geometry_set: a triangle the tree leaves out stays in its mesh, after the others", "[geometry_set]") {
+  std::vector<TriangleMesh> meshes{grid_mesh(3, 0.0f, 0.0f), grid_mesh(2, 1.0f, 0.0f)};
+  // A triangle of NaN vertices has NaN bounds: nothing can hit it, so the BVH leaves it out.
+  const uint32_t bad = uint32_t(meshes[1].vertex_count());
+  meshes[1].add_vertex({std::numeric_limits<float>::quiet_NaN(), 0, 0});
+  meshes[1].add_triangle(bad, bad, bad);
+  const std::vector<Quadric> no_quadrics;
+  GeometrySet set;
+  set.build(meshes, no_quadrics, 0);
+  CHECK(set.triangle_count() == 18 + 8);
+  REQUIRE(meshes[1].triangle_count() == 9);
+  CHECK(meshes[1].indices[3 * 8 + 2] == bad);
+}
+
+TEST_CASE("geometry_set: the dragon fits 64 bytes per triangle in a finished scene", "[geometry_set]") {
+  if (!std::ifstream(kDragon)) {
+    WARN("skipped: " << kDragon << " is absent (shared data not installed)");
+    return;
+  }
+  TriangleMesh mesh = load_mesh(kDragon);
+  REQUIRE(mesh.triangle_count() == 100000);
+  REQUIRE(mesh.has_normals());
+  const TriangleMesh original = mesh;
+  Scene scene;
+  scene.meshes.push_back(std::move(mesh));
+  scene.objects.resize(1);
+  scene.finalize();
+  // Everything the scene holds for this mesh: nodes, leaf triangles and bitmap, index maps (none for one mesh),
+  // and the mesh arrays (indices and normals; positions released because the mesh does not emit).
+  const double n = 100000.0;
+  const double accel = double(scene.accel_bytes()) / n, geometry = double(scene.geometry_bytes()) / n;
+  INFO("acceleration " << accel << " B/tri, mesh " << geometry << " B/tri");
+  CHECK(scene.meshes[0].x.empty());
+  CHECK(accel + geometry <= 64.0);
+
+  // An emitting mesh keeps its positions (area lights sample them).
+  Scene lit;
+  lit.meshes.push_back(original);
+  lit.objects.resize(1);
+  lit.objects[0].area_light = 0;
+  Light light;
+  light.kind = LightKind::Area;
+  light.object = 0;
+  light.radiance = Rgb(1);
+  lit.lights.push_back(light);
+  lit.finalize();
+  CHECK(lit.meshes[0].x.size() == original.x.size());
+}
