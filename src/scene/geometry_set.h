@@ -7,7 +7,10 @@
 // 63.3 B/tri, checked by test_geometry_set_memory.cc. Sets of several meshes add 8 B/tri (mesh and local
 // index per triangle).
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "accel/bvh2.h"
@@ -54,7 +57,7 @@ class GeometrySet {
   uint32_t object_of(uint32_t prim) const {
     if (is_voxel_prim(prim))
       return object_base_ + uint32_t(meshes_->size() + quadrics_->size()) + voxel_prim_grid(prim);
-    if (prim < triangle_count()) return object_base_ + (tri_mesh_.empty() ? 0 : tri_mesh_[prim]);
+    if (prim < triangle_count()) return object_base_ + (tri_ref_ ? tri_ref_[prim].mesh : 0);
     return object_base_ + uint32_t(meshes_->size()) + (prim - triangle_count());
   }
   Bounds3f bounds() const { return bounds_; }
@@ -74,15 +77,20 @@ class GeometrySet {
  private:
   void intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const;
   void intersect_grids(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const;
-  void store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first);
+  void store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first,
+                           std::span<std::byte> scratch);
   const std::vector<TriangleMesh>* meshes_ = nullptr;
   const std::vector<Quadric>* quadrics_ = nullptr;
   const std::vector<VoxelGridAccel>* grids_ = nullptr;
   uint32_t object_base_ = 0;
   uint32_t triangle_count_ = 0;
-  // Sets of several meshes only (empty for one mesh): triangle (leaf position) -> its mesh and its index there.
-  std::vector<uint32_t> tri_mesh_;
-  std::vector<uint32_t> tri_local_;
+  // Sets of several meshes only (null for one mesh): triangle (leaf position) -> its mesh and its index there.
+  // Not a std::vector: nothing reads it before the build writes every entry, and zero-filling 28 M entries first
+  // costs a second of page faults on a VM.
+  struct TriangleRef {
+    uint32_t mesh, local;
+  };
+  std::unique_ptr<TriangleRef[]> tri_ref_;
   // All triangles of all meshes in one wide BVH (SIMD kernels, simd/traverse.h); the few analytic shapes in a
   // scalar BVH2 of their own, traced after it with t_max clipped to the triangle hit.
   WideBvh<kDefaultBvhWidth> tri_bvh_;
