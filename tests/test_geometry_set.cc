@@ -101,7 +101,8 @@ TEST_CASE("geometry_set: meshes in leaf order shade like the originals", "[geome
     for (size_t m = 0; m < meshes.size(); ++m) {
       auto sorted = [](const TriangleMesh& mesh) {
         std::vector<std::array<uint32_t, 3>> t(mesh.triangle_count());
-        for (size_t i = 0; i < t.size(); ++i) t[i] = {mesh.indices[3 * i], mesh.indices[3 * i + 1], mesh.indices[3 * i + 2]};
+        for (size_t i = 0; i < t.size(); ++i)
+          t[i] = {mesh.indices[3 * i], mesh.indices[3 * i + 1], mesh.indices[3 * i + 2]};
         std::sort(t.begin(), t.end());
         return t;
       };
@@ -114,7 +115,8 @@ TEST_CASE("geometry_set: meshes in leaf order shade like the originals", "[geome
     Pcg32 rng(several ? 3 : 4);
     int hits = 0;
     for (int i = 0; i < 4000; ++i) {
-      const Vec3f o(rng.next_float() * 1.2f - 0.1f, rng.next_float() * 1.2f - 0.1f, rng.next_float() < 0.5f ? 2.0f : -2.0f);
+      const float side = rng.next_float() < 0.5f ? 2.0f : -2.0f;
+      const Vec3f o(rng.next_float() * 1.2f - 0.1f, rng.next_float() * 1.2f - 0.1f, side);
       const Vec3f target(rng.next_float(), rng.next_float(), rng.next_float() - 0.5f);
       const Ray ray{o, normalize(target - o)};
       const BruteHit expect = brute_force(original, ray);
@@ -139,6 +141,29 @@ TEST_CASE("geometry_set: meshes in leaf order shade like the originals", "[geome
     }
     CHECK(hits > 1500);
   }
+}
+
+TEST_CASE("geometry_set: every triangle of a large several-mesh set finds its own vertex attributes", "[geometry_set]") {
+  // 145,000 triangles: the reorder runs in parallel blocks of 64 k leaf positions.
+  std::vector<TriangleMesh> meshes{grid_mesh(200, 0.0f, 0.0f), grid_mesh(150, 0.5f, 1.0f), grid_mesh(100, -0.5f, 2.0f)};
+  const std::vector<Quadric> no_quadrics;
+  GeometrySet set;
+  set.build(meshes, no_quadrics, 0);
+  REQUIRE(set.triangle_count() == 145000);
+  // A grid vertex's uv is (x^2 + seed, y) and its normal's x is 0.1 sin(3x + seed), so the attributes read through
+  // the reordered indices must belong to the position read from the leaves: vertex k of every triangle.
+  int bad = 0;
+  for (uint32_t i = 0; i < set.triangle_count(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const Hit h{1.0f, i, k == 1 ? 1.0f : 0.0f, k == 2 ? 1.0f : 0.0f};
+      const SurfaceHit sh = set.surface(h);
+      const float seed = float(sh.object);
+      const Vec3f n = normalize(Vec3f(0.1f * std::sin(3 * sh.p.x + seed), 0.1f * std::cos(4 * sh.p.y), 1));
+      if (std::fabs(sh.uv.x - (sh.p.x * sh.p.x + seed)) > 1e-5f || std::fabs(sh.uv.y - sh.p.y) > 1e-6f ||
+          length(sh.ns - n) > 1e-5f)
+        ++bad;
+    }
+  CHECK(bad == 0);
 }
 
 TEST_CASE("geometry_set: a triangle the tree leaves out stays in its mesh, after the others", "[geometry_set]") {

@@ -84,10 +84,12 @@ void GeometrySet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const s
   tri_ref_.reset();
   if (!one_mesh && n > 0) tri_ref_ = std::make_unique_for_overwrite<TriangleRef[]>(n);
   const auto mesh_of = [&](uint32_t g) {
-    return one_mesh ? 0u : uint32_t(std::upper_bound(mesh_first.begin(), mesh_first.end(), g) - mesh_first.begin() - 1);
+    if (one_mesh) return 0u;
+    return uint32_t(std::upper_bound(mesh_first.begin(), mesh_first.end(), g) - mesh_first.begin() - 1);
   };
   // Blocks of at least 64 k triangles, and at most 4 M per-(block, mesh) counters.
-  const size_t blocks = std::max<size_t>(1, std::min({n / 65536, size_t(64), (size_t(4) << 20) / std::max<size_t>(mesh_count, 1)}));
+  const size_t blocks =
+      std::max<size_t>(1, std::min({n / 65536, size_t(64), (size_t(4) << 20) / std::max<size_t>(mesh_count, 1)}));
   const auto block_begin = [&](size_t b) { return b * n / blocks; };
   std::vector<uint32_t> rank(blocks * mesh_count, 0);  // block b, mesh m at b * mesh_count + m
   if (!one_mesh)
@@ -123,7 +125,8 @@ void GeometrySet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const s
         if (!in_tree[mesh_first[m] + t]) stage(m, next++, &meshes[m].indices[3 * t]);
   }
   tbb::parallel_for(uint32_t(0), uint32_t(mesh_count), [&](uint32_t m) {
-    std::memcpy(meshes[m].indices.data(), scratch.data() + 12 * size_t(mesh_first[m]), 4 * meshes[m].indices.size());
+    if (!meshes[m].indices.empty())
+      std::memcpy(meshes[m].indices.data(), scratch.data() + 12 * size_t(mesh_first[m]), 4 * meshes[m].indices.size());
   });
   tri_bvh_.prim_indices = {};
 }
