@@ -8,11 +8,12 @@
 // directions (one vector test for all N children, Reshetov et al. 2005); the interval's far bound is the largest
 // t_max of the packet, which closest hit lowers as its lanes find hits. Closest hit then takes the interval's
 // verdict for interior children (they inherit the node's lanes and are ordered by the interval's entry bound) and
-// tests only leaf children lane by lane; any hit tests the survivors lane by lane (it needs live-lane counts for
-// the single-ray fallback). The leaf test skips the division when no lane is inside the triangle.
-// Any hit only: children are visited in any order (no entry distances computed); and once an entry holds few live
-// rays (kSingleThreshold) its subtree is traced one ray at a time with the single-ray kernel's tests (Benthin et
-// al. 2012).
+// tests only leaf children lane by lane, unless the packet's rays have parted (per-lane mode, see PacketStats);
+// any hit tests the survivors lane by lane (it needs live-lane counts for the single-ray fallback). The leaf test
+// skips the division when no lane is inside the triangle.
+// Any hit, and closest hit in per-lane mode: once an entry holds few live rays (kSingleThreshold,
+// kClosestSingleThreshold) its subtree is traced one ray at a time with the single-ray kernel (Benthin et al.
+// 2012). Any hit visits children in any order (no entry distances computed).
 // Rays that are done (invalid input, padding past `count`, occluded in an any-hit query) get t_max = -inf, which
 // fails every slab and triangle test, so they never disturb the others; an any-hit packet stops when all its
 // rays are occluded.
@@ -416,9 +417,37 @@ HWY_INLINE uint32_t LanesReaching(const Packet<P>& p, uint32_t lanes, float t) {
 // shadow rays, AVX2, wide8: 6 of 16 and 3 of 8 were best; 0 and "always single" were both ~25% slower).
 template <size_t P>
 constexpr int kSingleThreshold = P == 16 ? 6 : 3;
+// Closest hit in per-lane mode (below): the same hand-over at half the packet (8 of 16 on bunny-16m, AVX2, wide8:
+// 3.83 Mrays/s; 6: 3.6).
+template <size_t P>
+constexpr int kClosestSingleThreshold = int(P / 2);
+
+// Closest-hit packets normally let interior children inherit the node's lanes once the packet's interval test
+// passes them (cheap while the packet's rays stay together). When triangles are small against the packet's
+// footprint the rays part early and the packet drags all its lanes through every subtree any of them enters:
+// on the bunny grown to 16 M triangles (2.5 of 16 lanes reach an average leaf) that ran at 2.9 Mrays/s, slower
+// than single rays (3.5). Such packets switch to per-lane child tests, which let lanes drop out, and hand
+// subtrees with few lanes to single-ray traversal (3.85 Mrays/s). The switch is driven by leaf occupancy, the
+// share of a packet's rays that reach the leaves it visits (13 of 16 on the bunny and dragon, 7 on bunny-1m, 4 on
+// bunny-4m), two ways:
+//   - within a packet, after two leaf visits below 40 % occupancy;
+//   - from the start, when the running mean over the batch's earlier packets (started in interval mode) is below
+//     25 %; every 64th packet starts in interval mode anyway, to keep that mean current.
+// Both modes find the same closest hits (ties at exactly equal t may resolve differently); the thresholds were
+// picked on bunny, dragon, bunny-1m, -4m and -16m primary rays, where no scene got slower (2026-11-22, 15:18 UTC).
+constexpr float kSparseLeafOccupancy = 0.40f;
+constexpr uint32_t kSparseLeafVisits = 2;
+constexpr float kSparseBatchOccupancy = 0.25f;
+constexpr size_t kIntervalProbeEvery = 64;
+
+// Leaf occupancy of one closest-hit packet, and the mode it starts in.
+struct PacketStats {
+  uint32_t leaf_visits = 0, leaf_lanes = 0;
+  bool per_lane = false;
+};
 
 template <int N, size_t P, bool kAny>
-void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p) {
+void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p, PacketStats* stats) {
   struct Entry {
     uint32_t ref, count, lanes;
     float t_near;
@@ -426,18 +455,43 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
   Entry stack[kMaxWideDepth * (N - 1) + 1];
   int sp = 0;
   uint32_t ref = 0, count = 0, lanes = p.valid;  // the root is node 0
+  bool per_lane = stats->per_lane;  // closest hit: per-lane child tests and single-ray hand-over (see above)
+  const float valid_count = float(std::popcount(p.valid));
   for (;;) {
-    if (kAny && std::popcount(lanes) <= kSingleThreshold<P>) {
+    if ((kAny || per_lane) && std::popcount(lanes) <= (kAny ? kSingleThreshold<P> : kClosestSingleThreshold<P>)) {
       // Few rays left here: one at a time is cheaper than a mostly empty packet.
       for (uint32_t b = lanes; b != 0; b &= b - 1) {
         const size_t i = size_t(__builtin_ctz(b));
         RayBlock block;
         SetupRay<N>(p.ray(i), block, 0);
-        if (TraceRay<N, true>(bvh, tris, SingleRay{&block, 0, tris.data.data()}, p.t_max[i], nullptr, ref, count))
-          p.t_max[i] = -kInfinity;
+        const SingleRay one{&block, 0, tris.data.data()};
+        if constexpr (kAny) {
+          if (TraceRay<N, true>(bvh, tris, one, p.t_max[i], nullptr, ref, count)) p.t_max[i] = -kInfinity;
+        } else {
+          Hit h;
+          if (TraceRay<N, false>(bvh, tris, one, p.t_max[i], &h, ref, count)) {
+            p.t_max[i] = h.t;
+            p.b1[i] = h.b1;
+            p.b2[i] = h.b2;
+            p.prim[i] = h.prim;
+          }
+        }
       }
-      if (LiveLanes(p, p.valid) == 0) return;
+      if constexpr (kAny) {
+        if (LiveLanes(p, p.valid) == 0) return;
+      } else {
+        ++stats->leaf_visits;  // the subtree's rays, counted as one sparse leaf visit
+        stats->leaf_lanes += uint32_t(std::popcount(lanes));
+        if (p.same_octant) p.t_hi = MaxT(p);
+      }
     } else if (ref & kLeafFlag) {
+      if constexpr (!kAny) {
+        ++stats->leaf_visits;
+        stats->leaf_lanes += uint32_t(std::popcount(lanes));
+        if (!per_lane && stats->leaf_visits >= kSparseLeafVisits &&
+            float(stats->leaf_lanes) < kSparseLeafOccupancy * float(stats->leaf_visits) * valid_count)
+          per_lane = true;
+      }
       // Any hit: stop once every ray is occluded.
       if (PacketLeaf<kAny>(tris, ref & ~kLeafFlag, count, lanes, p)) {
         if constexpr (kAny) {
@@ -451,7 +505,7 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
       uint32_t child_lanes[N];
       alignas(64) float t_near[N];
       uint32_t bits;
-      if (!kAny && p.same_octant) {
+      if (!kAny && p.same_octant && !per_lane) {
         // Closest hit, one octant: the interval test alone decides the interior children, which inherit the
         // node's lanes and are ordered by the interval's entry bound (a lower bound of every lane's entry
         // distance, so the pop test below stays exact). Only leaf children get the per-lane test, so a leaf's
@@ -527,10 +581,16 @@ template <int N, size_t P>
 void ClosestPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                     Hit* hits) {
   Packet<P> p;
+  float occupancy = 1.0f;  // running mean leaf occupancy of the packets started in interval mode
   for (size_t begin = 0; begin < count; begin += P) {
     const size_t n = count - begin < P ? count - begin : P;
     SetupPacket<N, true>(p, rays, begin, n);
-    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, false>(bvh, tris, p);
+    PacketStats stats;
+    stats.per_lane = (begin / P) % kIntervalProbeEvery != 0 && occupancy < kSparseBatchOccupancy;
+    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, false>(bvh, tris, p, &stats);
+    if (!stats.per_lane && stats.leaf_visits > 0)
+      occupancy = 0.9f * occupancy +
+                  0.1f * float(stats.leaf_lanes) / (float(stats.leaf_visits) * float(std::popcount(p.valid)));
     for (size_t i = 0; i < n; ++i)
       hits[begin + i] = p.prim[i] == kNoHit ? Hit{} : Hit{p.t_max[i], p.prim[i], p.b1[i], p.b2[i]};
   }
@@ -543,7 +603,8 @@ void AnyPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA&
   for (size_t begin = 0; begin < count; begin += P) {
     const size_t n = count - begin < P ? count - begin : P;
     SetupPacket<N, true>(p, rays, begin, n);
-    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, true>(bvh, tris, p);
+    PacketStats stats;
+    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, true>(bvh, tris, p, &stats);
     // Occluded lanes were retired with t_max = -inf; invalid ones never were valid.
     for (size_t i = 0; i < n; ++i) occluded[begin + i] = ((p.valid >> i) & 1) && !(p.t_max[i] > 0) ? 1 : 0;
   }
