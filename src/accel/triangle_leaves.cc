@@ -42,7 +42,7 @@ TriangleLeaves fill_leaves(const WideBvh<N>& bvh, bool parallel, Vertices&& vert
     for (size_t ni = b; ni < e; ++ni) {
       const WideNode<N>& node = bvh.nodes[ni];
       for (int c = 0; c < N; ++c) {
-        if (node.child[c] == kEmptyChild || !(node.child[c] & kLeafFlag)) continue;
+        if (!is_leaf_child(node.child[c])) continue;
         const uint32_t first = node.child[c] & ~kLeafFlag, count = node.leaf_count[c];
         if (size_t(first) + count > n) throw Error("Triangle leaves: a leaf lies outside prim_indices.");
         float* const out = data + 9 * size_t(first);
@@ -66,7 +66,7 @@ TriangleLeaves fill_leaves(const WideBvh<N>& bvh, bool parallel, Vertices&& vert
   leaves.leaf_starts.assign((n + 63) / 64, 0);
   for (const WideNode<N>& node : bvh.nodes)
     for (int c = 0; c < N; ++c)
-      if (node.child[c] != kEmptyChild && (node.child[c] & kLeafFlag)) {
+      if (is_leaf_child(node.child[c])) {
         const uint32_t first = node.child[c] & ~kLeafFlag;
         leaves.leaf_starts[first / 64] |= uint64_t(1) << (first % 64);
       }

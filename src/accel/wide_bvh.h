@@ -17,6 +17,8 @@ namespace torte {
 // leaf order), with the primitive count in WideNode::leaf_count; an unused slot is kEmptyChild.
 constexpr uint32_t kLeafFlag = 0x80000000u;
 constexpr uint32_t kEmptyChild = 0xffffffffu;
+// kEmptyChild has kLeafFlag set too: a leaf is a reference with the flag that is not empty.
+constexpr bool is_leaf_child(uint32_t ref) { return ref != kEmptyChild && (ref & kLeafFlag) != 0; }
 
 // One node = N children's bounds as structure of arrays (lane i = child i), so one vector op tests one slab of
 // all children. Empty slots have lo = +inf and hi = -inf, which every ray misses.

@@ -4,7 +4,7 @@
 //
 // Memory (the dragon, one mesh with vertex normals): wide nodes 9.2 B/tri, leaf triangles 36.1 (with the leaf-start
 // bitmap), mesh indices 12 and normals 6 once the scene releases the mesh positions (the leaves hold them):
-// 63.3 B/tri, checked by test_geometry_set_memory.cc. Sets of several meshes add 8 B/tri (mesh and local
+// 63.2 B/tri, checked by test_geometry_set.cc. Sets of several meshes add 8 B/tri (mesh and local
 // index per triangle).
 #pragma once
 #include <cstddef>
