@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/bounds.h"
+#include "core/huge_pages.h"
 #include "core/ray.h"
 
 namespace torte {
@@ -37,7 +38,7 @@ static_assert(sizeof(WideNode<8>) == 256);
 
 template <int N>
 struct WideBvh {
-  std::vector<WideNode<N>> nodes;      // root at index 0 (or empty when there are no primitives)
+  HugePageVector<WideNode<N>> nodes;   // root at index 0 (or empty when there are no primitives); huge pages
   std::vector<uint32_t> prim_indices;  // leaf order -> caller's primitive index
   Bounds3f bounds;
   size_t memory_bytes() const { return nodes.size() * sizeof(WideNode<N>) + prim_indices.size() * sizeof(uint32_t); }
@@ -55,7 +56,7 @@ struct WideBvh {
 // finds its leaf's run layout from the leaf-order index alone.
 struct TriangleLeaves {
   static constexpr size_t kLeafPadding = 16;
-  std::vector<float> data;
+  HugePageVector<float> data;  // on huge pages (core/huge_pages.h), as the nodes
   std::vector<uint64_t> leaf_starts;  // bit i (word i / 64, bit i % 64): leaf-order triangle i starts a leaf
   size_t size() const { return data.empty() ? 0 : (data.size() - kLeafPadding) / 9; }
   size_t memory_bytes() const { return data.size() * sizeof(float) + leaf_starts.size() * sizeof(uint64_t); }

@@ -1,0 +1,50 @@
+// The huge-page allocator behind the BVH nodes and leaf triangles (core/huge_pages.h).
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <fstream>
+#include <string>
+
+#include "accel/wide_bvh.h"
+#include "core/huge_pages.h"
+
+using namespace torte;
+
+namespace {
+
+// The kernel's THP mode, the bracketed word of /sys/kernel/mm/transparent_hugepage/enabled ("" when unknown).
+std::string thp_mode() {
+  std::ifstream f("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string all, word;
+  std::getline(f, all);
+  const size_t open = all.find('['), close = all.find(']');
+  return open == std::string::npos || close == std::string::npos ? "" : all.substr(open + 1, close - open - 1);
+}
+
+}  // namespace
+
+TEST_CASE("Large blocks start on a huge page and are backed by huge pages", "[huge_pages]") {
+  HugePageVector<float> big(3 * huge_pages::kHugePage / sizeof(float) + 5, 1.0f);
+  CHECK(reinterpret_cast<uintptr_t>(big.data()) % huge_pages::kHugePage == 0);
+  CHECK(big.front() == 1.0f);
+  CHECK(big.back() == 1.0f);
+  const std::string mode = thp_mode();
+  if (mode != "always" && mode != "madvise") {
+    WARN("transparent huge pages are '" << mode << "' here: only the alignment is checked");
+    return;
+  }
+  // Every page was written by the vector's fill, so the kernel had the chance to back the aligned 2 MiB ranges.
+  CHECK(huge_pages::backed_bytes(big.data()) >= huge_pages::kHugePage);
+}
+
+TEST_CASE("Small blocks keep their type's alignment and grow like any vector", "[huge_pages]") {
+  HugePageVector<WideNode<8>> nodes(3);
+  CHECK(reinterpret_cast<uintptr_t>(nodes.data()) % alignof(WideNode<8>) == 0);
+  // Growing past the threshold moves the data to a mapping of its own, contents intact.
+  for (uint32_t i = 0; nodes.size() * sizeof(WideNode<8>) < 3 * huge_pages::kHugePage; ++i) {
+    nodes.emplace_back();
+    nodes.back().child[0] = i;
+  }
+  CHECK(reinterpret_cast<uintptr_t>(nodes.data()) % huge_pages::kHugePage == 0);
+  for (size_t i = 3; i < nodes.size(); ++i) REQUIRE(nodes[i].child[0] == uint32_t(i - 3));
+}
