@@ -446,6 +446,7 @@ TEST_CASE("bvh_build: invalid options and infinite bounds are reported", "[bvh_b
   // A hand-made binary tree with an oversized leaf cannot be collapsed.
   BinaryBvh big;
   big.nodes.push_back({box({0, 0, 0}, {1, 1, 1}), 0, 300});
-  big.prim_indices = iota(300);
+  const std::vector<uint32_t> all = iota(300);
+  big.prim_indices.assign(all.begin(), all.end());
   CHECK_THROWS_WITH(collapse<4>(big), Catch::Contains("255"));
 }

@@ -109,7 +109,7 @@ struct RangeBounds {
 
 class Builder {
  public:
-  Builder(const BvhBuildOptions& options, std::vector<PrimRef>& refs, BinaryBvhNode* nodes)
+  Builder(const BvhBuildOptions& options, HugePageVector<PrimRef>& refs, BinaryBvhNode* nodes)
       : o_(options), refs_(refs), nodes_(nodes), block_shift_(std::countr_zero(uint32_t(options.leaf_block_size))),
         block_mask_(uint32_t(options.leaf_block_size) - 1) {}
 
@@ -419,7 +419,7 @@ class Builder {
   }
 
   const BvhBuildOptions& o_;
-  std::vector<PrimRef>& refs_;
+  HugePageVector<PrimRef>& refs_;
   BinaryBvhNode* nodes_;
   const int block_shift_;
   const uint32_t block_mask_;
@@ -458,7 +458,7 @@ void for_chunks(size_t n, bool parallel, F&& f) {
 }
 
 // Primitive references of the valid (non-empty, non-NaN) primitives in input order, and their bounds.
-std::vector<PrimRef> make_refs(std::span<const Bounds3f> prims, bool parallel, RangeBounds* root) {
+HugePageVector<PrimRef> make_refs(std::span<const Bounds3f> prims, bool parallel, RangeBounds* root) {
   auto valid = [](const Bounds3f& b) { return b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z; };
   const size_t chunks = (prims.size() + kGrain - 1) / kGrain;
   std::vector<size_t> offset(chunks + 1, 0), first_infinite(chunks, SIZE_MAX);
@@ -476,7 +476,7 @@ std::vector<PrimRef> make_refs(std::span<const Bounds3f> prims, bool parallel, R
                   " has infinite bounds; only finite shapes can be placed in the scene.");
     offset[c + 1] += offset[c];
   }
-  std::vector<PrimRef> refs(offset[chunks]);
+  HugePageVector<PrimRef> refs(offset[chunks]);
   std::vector<RangeBounds> chunk_bounds(chunks);
   for_chunks(prims.size(), parallel, [&](size_t c, size_t b, size_t e) {
     size_t out = offset[c];
@@ -498,16 +498,17 @@ BinaryBvh build_binary_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuild
   if (prim_bounds.size() >= size_t(kLeafFlag)) throw Error("BVH build: too many primitives (2^31 at most).");
   BinaryBvh bvh;
   RangeBounds root;
-  std::vector<PrimRef> refs = make_refs(prim_bounds, options.parallel, &root);
+  HugePageVector<PrimRef> refs = make_refs(prim_bounds, options.parallel, &root);
   if (refs.empty()) return bvh;
   // The builder writes into an uninitialised buffer of the 2n - 1 bound (a vector's serial zero fill of 64 bytes
   // per primitive cost more than the copy), then the nodes used are copied out in parallel chunks.
   const size_t max_nodes = 2 * refs.size() - 1;
-  struct FreeNodes {
-    void operator()(BinaryBvhNode* p) const { ::operator delete(p); }
+  const size_t scratch_bytes = max_nodes * sizeof(BinaryBvhNode);
+  const auto free_nodes = [scratch_bytes](BinaryBvhNode* p) {
+    huge_pages::deallocate(p, scratch_bytes, alignof(BinaryBvhNode));
   };
-  std::unique_ptr<BinaryBvhNode, FreeNodes> scratch(
-      static_cast<BinaryBvhNode*>(::operator new(max_nodes * sizeof(BinaryBvhNode))));
+  std::unique_ptr<BinaryBvhNode, decltype(free_nodes)> scratch(
+      static_cast<BinaryBvhNode*>(huge_pages::allocate(scratch_bytes, alignof(BinaryBvhNode))), free_nodes);
   Builder builder(options, refs, scratch.get());
   builder.build(0, 0, uint32_t(refs.size()), 0, root);
   const size_t used = builder.node_count();

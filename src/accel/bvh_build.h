@@ -81,8 +81,8 @@ static_assert(sizeof(BinaryBvhNode) == 32);
 // Root at index 0 (nodes is empty when no primitive has non-empty bounds). prim_indices lists the primitives in
 // depth-first leaf order (left child first), so every leaf's range follows its left sibling's.
 struct BinaryBvh {
-  std::vector<BinaryBvhNode> nodes;
-  std::vector<uint32_t> prim_indices;
+  HugePageVector<BinaryBvhNode> nodes;  // huge pages (core/huge_pages.h): fewer page faults while building
+  HugePageVector<uint32_t> prim_indices;
   size_t memory_bytes() const { return nodes.size() * sizeof(BinaryBvhNode) + prim_indices.size() * 4; }
 };
 

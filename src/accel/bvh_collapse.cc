@@ -81,7 +81,7 @@ class GreedyCollapser {
   }
 
  private:
-  const std::vector<BinaryBvhNode>& bin_;
+  const HugePageVector<BinaryBvhNode>& bin_;
   WideBvh<N>& wide_;
 };
 
@@ -203,7 +203,7 @@ class OptimalCollapser {
     return index;
   }
 
-  const std::vector<BinaryBvhNode>& bin_;
+  const HugePageVector<BinaryBvhNode>& bin_;
   const BvhBuildOptions& o_;
   WideBvh<N>& wide_;
   std::vector<Choice> dp_;

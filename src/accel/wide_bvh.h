@@ -39,7 +39,7 @@ static_assert(sizeof(WideNode<8>) == 256);
 template <int N>
 struct WideBvh {
   HugePageVector<WideNode<N>> nodes;   // root at index 0 (or empty when there are no primitives); huge pages
-  std::vector<uint32_t> prim_indices;  // leaf order -> caller's primitive index
+  HugePageVector<uint32_t> prim_indices;  // leaf order -> caller's primitive index
   Bounds3f bounds;
   size_t memory_bytes() const { return nodes.size() * sizeof(WideNode<N>) + prim_indices.size() * sizeof(uint32_t); }
 };

@@ -37,8 +37,8 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
   }
   if (input_triangles > kVoxelPrimBit) throw Error("more than 2^31 triangles in one scene or group");
   // Triangles: vertices per triangle, bounds, the wide BVH and its leaf-order vertex copy.
-  std::vector<Vec3f> vertices(input_triangles * 3);
-  std::vector<Bounds3f> tri_bounds(input_triangles);
+  HugePageVector<Vec3f> vertices(input_triangles * 3);  // huge pages: fewer faults on big scenes
+  HugePageVector<Bounds3f> tri_bounds(input_triangles);
   // Parallel over meshes and, nested, over each mesh's triangles: one big mesh would otherwise run serially.
   tbb::parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
     const TriangleMesh& mesh = meshes[m];
@@ -75,7 +75,7 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
 // reorder itself).
 void GeometrySet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first,
                                       std::span<std::byte> scratch) {
-  const std::vector<uint32_t>& order = tri_bvh_.prim_indices;  // leaf position -> input triangle
+  const auto& order = tri_bvh_.prim_indices;  // leaf position -> input triangle
   const size_t n = order.size(), mesh_count = meshes.size();
   const size_t input_triangles = mesh_first.empty() ? 0 : mesh_first.back() + meshes.back().triangle_count();
   if (scratch.size() < 12 * input_triangles) throw Error("internal: reorder scratch too small");
