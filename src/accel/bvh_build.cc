@@ -120,8 +120,10 @@ class Builder {
     const Vec3f extent = rb.cb.diagonal();
     RangeBounds left, right;
     uint32_t mid = begin;  // mid == begin: make a leaf
-    if (count == 1) {
-      // a leaf
+    if (count == 1 || (may_be_leaf && leaf_sah_cost(count, o_) <= o_.traversal_cost)) {
+      // A leaf. In the second case the SAH could not split either: a split costs traversal_cost plus a
+      // non-negative children term, never less than this leaf (a leaf of one block, with the default costs), so
+      // the split search is skipped; the tree is the same.
     } else if (max_component(extent) <= 0) {
       // All centroids coincide: no plane separates them and the SAH cannot tell halves apart. Keep them
       // together if they fit, otherwise halve the list so leaves stay within max_leaf_size.
