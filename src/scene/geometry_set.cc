@@ -82,7 +82,11 @@ void GeometrySet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const s
   triangle_count_ = uint32_t(n);
   const bool one_mesh = mesh_count == 1;
   tri_ref_.reset();
-  if (!one_mesh && n > 0) tri_ref_ = std::make_unique_for_overwrite<TriangleRef[]>(n);
+  mesh_first_.clear();
+  if (!one_mesh && n > 0) {
+    tri_ref_ = std::make_unique_for_overwrite<uint32_t[]>(n);
+    mesh_first_ = mesh_first;
+  }
   const auto mesh_of = [&](uint32_t g) {
     if (one_mesh) return 0u;
     return uint32_t(std::upper_bound(mesh_first.begin(), mesh_first.end(), g) - mesh_first.begin() - 1);
@@ -113,7 +117,7 @@ void GeometrySet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const s
     uint32_t* next = &rank[b * mesh_count];
     for (size_t i = block_begin(b); i < block_begin(b + 1); ++i) {
       const uint32_t g = order[i], m = mesh_of(g), local = next[m]++;
-      if (!one_mesh) tri_ref_[i] = {m, local};
+      if (!one_mesh) tri_ref_[i] = mesh_first[m] + local;
       stage(m, local, &meshes[m].indices[3 * size_t(g - mesh_first[m])]);
     }
   });
@@ -245,7 +249,7 @@ size_t GeometrySet::accel_bytes() const {
   for (uint32_t g = 0; g < grid_count(); ++g) grid_bytes += (*grids_)[g].bytes();
   return tri_bvh_.memory_bytes() + tri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
          quadric_bvh_.prim_indices().size() * sizeof(uint32_t) +
-         (tri_ref_ ? triangle_count_ * sizeof(TriangleRef) : 0) + grid_bytes;
+         (tri_ref_ ? triangle_count_ * sizeof(uint32_t) + mesh_first_.size() * sizeof(uint32_t) : 0) + grid_bytes;
 }
 
 SurfaceHit GeometrySet::surface(const Hit& hit, const Ray* ray) const {
@@ -262,7 +266,7 @@ SurfaceHit GeometrySet::surface(const Hit& hit, const Ray* ray) const {
   if (hit.prim < triangle_count()) {
     // Positions from the leaves (the meshes may have released theirs, scene/scene.h); normals and uvs from the
     // mesh, whose triangles are in leaf order.
-    const TriangleRef ref = tri_ref_ ? tri_ref_[hit.prim] : TriangleRef{0, hit.prim};
+    const TriangleRef ref = triangle_ref(hit.prim);
     const TriangleMesh& mesh = meshes[ref.mesh];
     const uint32_t* idx = &mesh.indices[3 * size_t(ref.local)];
     Vec3f p[3];

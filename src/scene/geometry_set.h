@@ -4,9 +4,10 @@
 //
 // Memory (the dragon, one mesh with vertex normals): wide nodes 9.2 B/tri, leaf triangles 36.1 (with the leaf-start
 // bitmap), mesh indices 12 and normals 6 once the scene releases the mesh positions (the leaves hold them):
-// 63.2 B/tri, checked by test_geometry_set.cc. Sets of several meshes add 8 B/tri (mesh and local
-// index per triangle).
+// 63.2 B/tri, checked by test_geometry_set.cc. Sets of several meshes add 4 B/tri (each triangle's place in
+// the meshes concatenated).
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -57,7 +58,7 @@ class GeometrySet {
   uint32_t object_of(uint32_t prim) const {
     if (is_voxel_prim(prim))
       return object_base_ + uint32_t(meshes_->size() + quadrics_->size()) + voxel_prim_grid(prim);
-    if (prim < triangle_count()) return object_base_ + (tri_ref_ ? tri_ref_[prim].mesh : 0);
+    if (prim < triangle_count()) return object_base_ + triangle_ref(prim).mesh;
     return object_base_ + uint32_t(meshes_->size()) + (prim - triangle_count());
   }
   Bounds3f bounds() const { return bounds_; }
@@ -84,13 +85,23 @@ class GeometrySet {
   const std::vector<VoxelGridAccel>* grids_ = nullptr;
   uint32_t object_base_ = 0;
   uint32_t triangle_count_ = 0;
-  // Sets of several meshes only (null for one mesh): triangle (leaf position) -> its mesh and its index there.
+  // Sets of several meshes only (null for one mesh): triangle (leaf position) -> its place in the meshes
+  // concatenated, mesh_first_[m] + its index in mesh m (4 B/tri; the mesh is found by a binary search over
+  // mesh_first_, which costs less per hit than 4 more bytes per triangle cost the scene).
   // Not a std::vector: nothing reads it before the build writes every entry, and zero-filling 28 M entries first
   // costs a second of page faults on a VM.
+  std::unique_ptr<uint32_t[]> tri_ref_;
+  std::vector<uint32_t> mesh_first_;  // first triangle of each mesh in the concatenation (several meshes only)
   struct TriangleRef {
     uint32_t mesh, local;
   };
-  std::unique_ptr<TriangleRef[]> tri_ref_;
+  TriangleRef triangle_ref(uint32_t prim) const {
+    if (!tri_ref_) return {0, prim};
+    const uint32_t g = tri_ref_[prim];
+    // The last mesh starting at or before g holds it (empty meshes start where the next one does).
+    const uint32_t m = uint32_t(std::upper_bound(mesh_first_.begin(), mesh_first_.end(), g) - mesh_first_.begin() - 1);
+    return {m, g - mesh_first_[m]};
+  }
   // All triangles of all meshes in one wide BVH (SIMD kernels, simd/traverse.h); the few analytic shapes in a
   // scalar BVH2 of their own, traced after it with t_max clipped to the triangle hit.
   WideBvh<kDefaultBvhWidth> tri_bvh_;
