@@ -2,16 +2,19 @@
 
 #include <sys/mman.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstddef>
 
 namespace torte::huge_pages {
 namespace {
 
 size_t round_up(size_t bytes) { return (bytes + kHugePage - 1) & ~(kHugePage - 1); }
-std::align_val_t small_align(size_t align) { return std::align_val_t(align > alignof(std::max_align_t) ? align : alignof(std::max_align_t)); }
+// Blocks below kHugePage come from operator new, with at least its default alignment.
+std::align_val_t small_align(size_t align) {
+  return std::align_val_t(align > alignof(std::max_align_t) ? align : alignof(std::max_align_t));
+}
 
 }  // namespace
 
@@ -29,7 +32,8 @@ void* allocate(size_t bytes, size_t align) {
   if (end > aligned + size) ::munmap(reinterpret_cast<void*>(aligned + size), end - (aligned + size));
   void* const p = reinterpret_cast<void*>(aligned);
 #ifdef MADV_HUGEPAGE
-  if (!getenv("TORTE_NO_HUGE_PAGES")) ::madvise(p, size, MADV_HUGEPAGE);  // advice only: an error (THP off, old kernel) leaves ordinary pages
+  // Advice only: an error (THP off, an old kernel) leaves ordinary pages.
+  if (std::getenv("TORTE_NO_HUGE_PAGES") == nullptr) ::madvise(p, size, MADV_HUGEPAGE);
 #endif
   return p;
 }

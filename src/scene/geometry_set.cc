@@ -87,10 +87,7 @@ void GeometrySet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const s
     tri_ref_ = std::make_unique_for_overwrite<uint32_t[]>(n);
     mesh_first_ = mesh_first;
   }
-  const auto mesh_of = [&](uint32_t g) {
-    if (one_mesh) return 0u;
-    return uint32_t(std::upper_bound(mesh_first.begin(), mesh_first.end(), g) - mesh_first.begin() - 1);
-  };
+  const auto mesh_of = [&](uint32_t g) { return one_mesh ? 0u : mesh_holding(mesh_first, g); };
   // Blocks of at least 64 k triangles, and at most 4 M per-(block, mesh) counters.
   const size_t blocks =
       std::max<size_t>(1, std::min({n / 65536, size_t(64), (size_t(4) << 20) / std::max<size_t>(mesh_count, 1)}));

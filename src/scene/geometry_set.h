@@ -95,11 +95,14 @@ class GeometrySet {
   struct TriangleRef {
     uint32_t mesh, local;
   };
+  // The mesh holding triangle g of the meshes concatenated (mesh_first: each mesh's first triangle there): the
+  // last one starting at or before g (an empty mesh starts where the next one does).
+  static uint32_t mesh_holding(std::span<const uint32_t> mesh_first, uint32_t g) {
+    return uint32_t(std::upper_bound(mesh_first.begin(), mesh_first.end(), g) - mesh_first.begin() - 1);
+  }
   TriangleRef triangle_ref(uint32_t prim) const {
     if (!tri_ref_) return {0, prim};
-    const uint32_t g = tri_ref_[prim];
-    // The last mesh starting at or before g holds it (empty meshes start where the next one does).
-    const uint32_t m = uint32_t(std::upper_bound(mesh_first_.begin(), mesh_first_.end(), g) - mesh_first_.begin() - 1);
+    const uint32_t g = tri_ref_[prim], m = mesh_holding(mesh_first_, g);
     return {m, g - mesh_first_[m]};
   }
   // All triangles of all meshes in one wide BVH (SIMD kernels, simd/traverse.h); the few analytic shapes in a
