@@ -444,6 +444,11 @@ constexpr size_t kIntervalProbeEvery = 64;
 struct PacketStats {
   uint32_t leaf_visits = 0, leaf_lanes = 0;
   bool per_lane = false;
+  // A leaf, or a subtree handed to single rays (counted as one sparse leaf visit), reached by `lanes`.
+  void count_leaf(uint32_t lanes) {
+    ++leaf_visits;
+    leaf_lanes += uint32_t(std::popcount(lanes));
+  }
 };
 
 template <int N, size_t P, bool kAny>
@@ -480,14 +485,12 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
       if constexpr (kAny) {
         if (LiveLanes(p, p.valid) == 0) return;
       } else {
-        ++stats->leaf_visits;  // the subtree's rays, counted as one sparse leaf visit
-        stats->leaf_lanes += uint32_t(std::popcount(lanes));
+        stats->count_leaf(lanes);
         if (p.same_octant) p.t_hi = MaxT(p);
       }
     } else if (ref & kLeafFlag) {
       if constexpr (!kAny) {
-        ++stats->leaf_visits;
-        stats->leaf_lanes += uint32_t(std::popcount(lanes));
+        stats->count_leaf(lanes);
         if (!per_lane && stats->leaf_visits >= kSparseLeafVisits &&
             float(stats->leaf_lanes) < kSparseLeafOccupancy * float(stats->leaf_visits) * valid_count)
           per_lane = true;
