@@ -5,8 +5,10 @@
 // watertight test's axis permutation and shear) cost ~150 instructions per ray, 15 % of a diffuse ray's traversal
 // (callgrind, 2026-11-22), mostly scalar divisions, selects and stores; across 8 rays per vector they cost a few.
 // Every value is the one the scalar code computes (WatertightRay, SlabRay), bit for bit: the same IEEE divisions
-// and products, and selects instead of branches. SetupRay is the one-ray version, for the packet kernels'
-// single-ray fallback. Include after traverse-inl.h (per-target part) inside a foreach_target file.
+// and products, and selects instead of branches. SetupRay is the one-ray version, the reference the tests compare
+// SetupRays against (CountRaySetupMismatches). The packet kernels build a block for a packet the first time they
+// hand rays over to single-ray traversal. Include after traverse-inl.h (per-target part) inside a foreach_target
+// file.
 
 // Per-target include guard (Highway's pattern).
 #if defined(TORTE_SIMD_SINGLE_RAY_INL_H_TARGET) == defined(HWY_TARGET_TOGGLE)

@@ -331,7 +331,7 @@ HWY_INLINE bool PacketLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t 
   // One permutation for the packet (camera and shadow packets): vertex k's coordinate on permuted axis j is run
   // 3 k + axes[j] of the leaf, broadcast straight from the leaf (staging the nine floats per triangle on the stack
   // cost ~40 instructions per triangle, callgrind).
-  const float* run[3][3];
+  const float* run[3][3] = {};  // set when same_axes (initialised: GCC cannot see that)
   if (p.same_axes)
     for (int k = 0; k < 3; ++k)
       for (int j = 0; j < 3; ++j) run[k][j] = base + size_t(3 * k + p.axes[j]) * count;
@@ -462,14 +462,22 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
   uint32_t ref = 0, count = 0, lanes = p.valid;  // the root is node 0
   bool per_lane = stats->per_lane;  // closest hit: per-lane child tests and single-ray hand-over (see above)
   const float valid_count = float(std::popcount(p.valid));
+  // The single-ray kernel's constants of the packet's rays, made at the first hand-over (vector ops across the
+  // rays), then shared by every later one: a packet hands some rays over several times (made per ray and per
+  // hand-over they cost ~150 instructions each).
+  RayBlock block;
+  bool block_ready = false;
   for (;;) {
     if ((kAny || per_lane) && std::popcount(lanes) <= (kAny ? kSingleThreshold<P> : kClosestSingleThreshold<P>)) {
       // Few rays left here: one at a time is cheaper than a mostly empty packet.
+      if (!block_ready) {
+        static_assert(P <= kRayBlock);
+        SetupRays<N>(RaySoA{p.ox, p.oy, p.oz, p.dx, p.dy, p.dz, p.t_max}, 0, P, block);
+        block_ready = true;
+      }
       for (uint32_t b = lanes; b != 0; b &= b - 1) {
         const size_t i = size_t(__builtin_ctz(b));
-        RayBlock block;
-        SetupRay<N>(p.ray(i), block, 0);
-        const SingleRay one{&block, 0, tris.data.data()};
+        const SingleRay one{&block, i, tris.data.data()};
         if constexpr (kAny) {
           if (TraceRay<N, true>(bvh, tris, one, p.t_max[i], nullptr, ref, count)) p.t_max[i] = -kInfinity;
         } else {
