@@ -61,6 +61,7 @@ struct Options {
   std::string embree_context = "best";  // Embree's packets: best of both, or "coherent" / "incoherent"
   std::string workloads;                // comma-separated subset of the workloads ("" = all)
   bool min_time = false;                // --stat min: fastest repetition instead of the median
+  bool embree_robust = false;           // --embree-robust: RTC_SCENE_FLAG_ROBUST (torte's guarantees)
 };
 Options g_opt;
 
@@ -122,6 +123,7 @@ void embree_error(void*, RTCError code, const char* str) {
 RTCScene build_embree(RTCDevice dev, const std::vector<float>& vertices, const TriangleMesh& mesh) {
   RTCScene scene = rtcNewScene(dev);
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+  if (g_opt.embree_robust) rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_MEDIUM);
   // Shared buffers: Embree reads the caller's arrays in place (the vertex array carries one float of padding,
@@ -356,7 +358,7 @@ int usage() {
   std::fprintf(stderr,
                "usage: embree-compare [--threads T] [--reps R] [--stat median|min] [--workloads a,b,...] [--full] "
                "[--scenes a,b,...] [--packet 8|16] "
-               "[--width 4|8] [--embree-context best|coherent|incoherent]\n"
+               "[--width 4|8] [--embree-context best|coherent|incoherent] [--embree-robust]\n"
                "  --threads T  traversal and build threads (default 1)\n"
                "  --reps R     repetitions per measurement; medians are printed (default 5)\n"
                "  --stat min   print the fastest repetition instead of the median (A/B runs on a loaded machine)\n"
@@ -366,7 +368,10 @@ int usage() {
                "  --packet     torte's packet size against rtcIntersect16 / rtcOccluded16 (default 16)\n"
                "  --width      torte's BVH width (default %d)\n"
                "  --embree-context  Embree's packets: the faster of the COHERENT and INCOHERENT intersect\n"
-               "               contexts (best, default), or only one of them\n",
+               "               contexts (best, default), or only one of them\n"
+               "  --embree-robust  build Embree's scene with RTC_SCENE_FLAG_ROBUST: conservative box tests and\n"
+               "               a watertight triangle test, the guarantees torte always gives (default: Embree's\n"
+               "               faster default mode, the reference of the targets)\n",
                kDefaultBvhWidth);
   return 2;
 }
@@ -379,6 +384,8 @@ int main(int argc, char** argv) {
     auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
     if (a == "--full") {
       set_full_run(true);
+    } else if (a == "--embree-robust") {
+      g_opt.embree_robust = true;
     } else if (a == "--stat" || a == "--workloads") {
       const char* v = value();
       if (!v) return usage();
@@ -419,9 +426,10 @@ int main(int argc, char** argv) {
   rtcSetDeviceErrorFunction(dev, embree_error, nullptr);
   rtcSetDeviceMemoryMonitorFunction(dev, memory_monitor, nullptr);
   std::printf("# embree-compare: Embree %s, torte traversal target %s, torte wide%d, torte packet %d, Embree packet "
-              "context %s, threads %d, %s of %d, %s\n",
+              "context %s, Embree mode %s, threads %d, %s of %d, %s\n",
               RTC_VERSION_STRING, traversal_target_name(), g_opt.width, g_opt.packet,
-              g_opt.embree_context.c_str(), g_opt.threads, g_opt.min_time ? "minimum" : "median", g_opt.reps,
+              g_opt.embree_context.c_str(), g_opt.embree_robust ? "robust" : "default", g_opt.threads,
+              g_opt.min_time ? "minimum" : "median", g_opt.reps,
               g_opt.threads == 1 ? "traversal in thread CPU time, builds in process CPU time" : "wall time");
   std::fflush(stdout);
   try {
