@@ -3,11 +3,7 @@
 // turned into masks), so results agree to a few ulps.
 
 // No contraction into FMA: the scalar BSDFs are compiled for baseline x86-64 (no FMA), so keep the same roundings.
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
+#include "core/no_fp_contract.h"  // before every other include
 
 #include "shade_eval.h"
 

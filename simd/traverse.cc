@@ -4,11 +4,7 @@
 // No contraction into FMA anywhere in this file: the edge functions must round like the scalar test's (see
 // geometry/triangle.cc); the slab test then also rounds exactly like SlabRay. Before every include, so that all
 // inlined Highway functions carry the same option.
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
+#include "core/no_fp_contract.h"  // before every other include
 
 #include "traverse.h"
 

@@ -16,11 +16,7 @@
 
 // No contraction into FMA: the single-ray code inlined here (entry_cell, face_uv: o + d * t) must round as it does
 // in the single-ray functions compiled without FMA. Before every include.
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
+#include "core/no_fp_contract.h"  // before every other include
 
 #include "voxel_packet.h"
 

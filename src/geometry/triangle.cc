@@ -7,11 +7,7 @@
 // The argument above needs each edge function to be evaluated as fl(fl(a*b) - fl(c*d)). A fused multiply-add
 // would round only one product, breaking the antisymmetry between the two triangles of an edge; keep the
 // compiler from contracting (GCC contracts by default in C++ as soon as the target has FMA).
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
+#include "core/no_fp_contract.h"  // before every other include
 
 #include "geometry/triangle.h"
 
