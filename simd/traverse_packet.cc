@@ -19,11 +19,7 @@
 // rays are occluded.
 
 // No FMA contraction (see traverse.cc): the watertight test must round exactly like the scalar one.
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
+#include "core/no_fp_contract.h"  // before every other include
 
 #include <bit>
 #include <cstddef>
@@ -451,6 +447,7 @@ struct PacketStats {
   }
 };
 
+// `stats`: the closest-hit packet's leaf occupancy and mode (see PacketStats); any hit takes none (nullptr).
 template <int N, size_t P, bool kAny>
 void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p, PacketStats* stats) {
   struct Entry {
@@ -460,7 +457,7 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
   Entry stack[kMaxWideDepth * (N - 1) + 1];
   int sp = 0;
   uint32_t ref = 0, count = 0, lanes = p.valid;  // the root is node 0
-  bool per_lane = stats->per_lane;  // closest hit: per-lane child tests and single-ray hand-over (see above)
+  bool per_lane = !kAny && stats->per_lane;  // closest hit: per-lane child tests and single-ray hand-over (above)
   const float valid_count = float(std::popcount(p.valid));
   // The single-ray kernel's constants of the packet's rays, made at the first hand-over (vector ops across the
   // rays), then shared by every later one: a packet hands some rays over several times (made per ray and per
@@ -614,8 +611,7 @@ void AnyPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA&
   for (size_t begin = 0; begin < count; begin += P) {
     const size_t n = count - begin < P ? count - begin : P;
     SetupPacket<N, true>(p, rays, begin, n);
-    PacketStats stats;
-    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, true>(bvh, tris, p, &stats);
+    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, true>(bvh, tris, p, nullptr);
     // Occluded lanes were retired with t_max = -inf; invalid ones never were valid.
     for (size_t i = 0; i < n; ++i) occluded[begin + i] = ((p.valid >> i) & 1) && !(p.t_max[i] > 0) ? 1 : 0;
   }
