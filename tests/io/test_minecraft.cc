@@ -812,18 +812,22 @@ end
 return W
 )LUA";
 
+// `script` run with the writer above available as the local W (writer.lua in `dir`, found through package.path).
+std::string run_ok_with_writer(const McDir& dir, const std::string& script,
+                               const std::vector<std::string>& args = {}) {
+  dir.write("writer.lua", kRegionWriter);
+  return run_ok(dir, "package.path = \"./?.lua;\" .. package.path\nlocal W = require \"writer\"\n" + script, args);
+}
+
 }  // namespace
 
 TEST_CASE("minecraft region: LZ4 chunks (LZ4Block streams) load like zlib ones; bad streams name file and chunk",
           "[minecraft]") {
   if (!have_worlds()) return;
   McDir dir("lz4_region");
-  dir.write("writer.lua", kRegionWriter);
   fs::create_directories(dir.path / "lz4");
   fs::create_directories(dir.path / "bad");
-  const std::string out = run_ok(dir, R"LUA(
-package.path = "./?.lua;" .. package.path
-local W = require "writer"
+  const std::string out = run_ok_with_writer(dir, R"LUA(
 local region = require "minecraft.region"
 local world = require "minecraft.world"
 local D = torte.data
@@ -908,11 +912,8 @@ print("ok")
 TEST_CASE("minecraft world: pre-1.13 fences, walls, panes join their neighbours; biomes tint per column",
           "[minecraft]") {
   McDir dir("connect");
-  dir.write("writer.lua", kRegionWriter);
   fs::create_directories(dir.path / "w");
-  const std::string out = run_ok(dir, R"LUA(
-package.path = "./?.lua;" .. package.path
-local W = require "writer"
+  const std::string out = run_ok_with_writer(dir, R"LUA(
 local world = require "minecraft.world"
 local blocks = require "minecraft.blocks"
 -- Ids: 1 stone, 2 grass, 9 water, 20 glass, 85 oak fence, 101 iron bars, 102 glass pane, 107 fence gate,
