@@ -15,7 +15,7 @@ namespace {
 // The kernel's THP mode, the bracketed word of /sys/kernel/mm/transparent_hugepage/enabled ("" when unknown).
 std::string thp_mode() {
   std::ifstream f("/sys/kernel/mm/transparent_hugepage/enabled");
-  std::string all, word;
+  std::string all;
   std::getline(f, all);
   const size_t open = all.find('['), close = all.find(']');
   return open == std::string::npos || close == std::string::npos ? "" : all.substr(open + 1, close - open - 1);
