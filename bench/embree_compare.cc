@@ -13,6 +13,9 @@
 // reference (coherent wins for camera rays, incoherent for the shadow rays, whose origins spread); a '#' line
 // gives both. --embree-context coherent|incoherent pins one. Single rays use the default (INCOHERENT) context.
 //   build           bounds + SAH build + collapse + leaves  vs rtcCommitScene at RTC_BUILD_QUALITY_MEDIUM
+// --tree embree: torte's kernels trace Embree's tree instead of torte's (rtcBuildBVH with the settings of Embree's
+// triangle builder, copied into torte's layout; embree_tree.h), so a traversal ratio then compares kernels on one
+// tree. The build line still compares the two builders.
 // Times are medians of --reps repetitions (--stat min: the fastest one), torte and Embree interleaved so that
 // load from other processes hits both alike. One thread: traversal is timed in CPU time of the calling thread,
 // builds in CPU time of the process (so time the machine's other processes take is not counted; Embree and torte
@@ -40,6 +43,7 @@
 #include <vector>
 
 #include "accel/bvh_build.h"
+#include "embree_tree.h"
 #include "core/error.h"
 #include "traverse.h"
 #include "workloads.h"
@@ -62,6 +66,7 @@ struct Options {
   std::string workloads;                // comma-separated subset of the workloads ("" = all)
   bool min_time = false;                // --stat min: fastest repetition instead of the median
   bool embree_robust = false;           // --embree-robust: RTC_SCENE_FLAG_ROBUST (torte's guarantees)
+  bool embree_tree = false;             // --tree embree: torte's kernels on Embree's tree
 };
 Options g_opt;
 
@@ -346,6 +351,17 @@ void run_scene(RTCDevice dev, const BenchScene& s) {
               double(accel.bytes()) / double(tris), N, double(embree_bytes) / double(tris),
               double(embree_peak) / double(tris));
 
+  if (g_opt.embree_tree) {
+    const BvhStats own = bvh_stats(accel.bvh);
+    const float own_sah = sah_cost(accel.bvh);
+    accel = build_torte_layout_of_embree_tree<N>(dev, mesh);
+    const BvhStats e = bvh_stats(accel.bvh);
+    std::printf("# --tree embree: torte's kernels trace Embree's tree: %zu nodes, %.2f children/node, %.2f "
+                "triangles/leaf, SAH %.3f (torte's own tree: %zu, %.2f, %.2f, SAH %.3f; SAH of wide%d trees, leaf "
+                "blocks of 4)\n",
+                e.nodes, e.avg_children, e.avg_leaf_size, double(sah_cost(accel.bvh)), own.nodes, own.avg_children,
+                own.avg_leaf_size, double(own_sah), N);
+  }
   compare_workload("primary", s, s.primary, accel, scene, Kind::Closest, true);
   compare_workload("primary-single", s, s.primary, accel, scene, Kind::Closest, false);
   compare_workload("shadow", s, s.shadow, accel, scene, Kind::Any, true);
@@ -358,7 +374,7 @@ int usage() {
   std::fprintf(stderr,
                "usage: embree-compare [--threads T] [--reps R] [--stat median|min] [--workloads a,b,...] [--full] "
                "[--scenes a,b,...] [--packet 8|16] "
-               "[--width 4|8] [--embree-context best|coherent|incoherent] [--embree-robust]\n"
+               "[--width 4|8] [--embree-context best|coherent|incoherent] [--embree-robust] [--tree torte|embree]\n"
                "  --threads T  traversal and build threads (default 1)\n"
                "  --reps R     repetitions per measurement; medians are printed (default 5)\n"
                "  --stat min   print the fastest repetition instead of the median (A/B runs on a loaded machine)\n"
@@ -371,7 +387,9 @@ int usage() {
                "               contexts (best, default), or only one of them\n"
                "  --embree-robust  build Embree's scene with RTC_SCENE_FLAG_ROBUST: conservative box tests and\n"
                "               a watertight triangle test, the guarantees torte always gives (default: Embree's\n"
-               "               faster default mode, the reference of the targets)\n",
+               "               faster default mode, the reference of the targets)\n"
+               "  --tree embree  torte's kernels trace a tree from Embree's SAH builder (rtcBuildBVH with its\n"
+               "               triangle builder's settings) in torte's layout: kernels compared on one tree\n",
                kDefaultBvhWidth);
   return 2;
 }
@@ -396,6 +414,10 @@ int main(int argc, char** argv) {
       const char* v = value();
       if (!v) return usage();
       g_opt.embree_context = v;
+    } else if (a == "--tree") {
+      const char* v = value();
+      if (!v || (std::string(v) != "torte" && std::string(v) != "embree")) return usage();
+      g_opt.embree_tree = std::string(v) == "embree";
     } else if (a == "--threads" || a == "--reps" || a == "--packet" || a == "--width" || a == "--scenes") {
       const char* v = value();
       if (!v) return usage();
@@ -426,9 +448,10 @@ int main(int argc, char** argv) {
   rtcSetDeviceErrorFunction(dev, embree_error, nullptr);
   rtcSetDeviceMemoryMonitorFunction(dev, memory_monitor, nullptr);
   std::printf("# embree-compare: Embree %s, torte traversal target %s, torte wide%d, torte packet %d, Embree packet "
-              "context %s, Embree mode %s, threads %d, %s of %d, %s\n",
+              "context %s, Embree mode %s, torte traces %s tree, threads %d, %s of %d, %s\n",
               RTC_VERSION_STRING, traversal_target_name(), g_opt.width, g_opt.packet,
-              g_opt.embree_context.c_str(), g_opt.embree_robust ? "robust" : "default", g_opt.threads,
+              g_opt.embree_context.c_str(), g_opt.embree_robust ? "robust" : "default",
+              g_opt.embree_tree ? "Embree's" : "its own", g_opt.threads,
               g_opt.min_time ? "minimum" : "median", g_opt.reps,
               g_opt.threads == 1 ? "traversal in thread CPU time, builds in process CPU time" : "wall time");
   std::fflush(stdout);
