@@ -7,9 +7,7 @@
 //   local root, name, next = torte.data.nbt(raw [, offset=1])   -- NBT (big-endian) -> Lua values
 //   local ids, counts = torte.data.unpack_bits(src, bits, count [, padded [, map]])
 //   local s2 = torte.data.map_int16(s, {[v] = w, ...} [, nil]) / map_int16(s, {map1, map2, ...}, select)
-//   local raw = torte.data.lz4_block(s, decompressed_size [, i [, j]])   -- one raw LZ4 block (liblz4), s:sub(i, j)
-//   local z = torte.data.lz4_compress(s [, i [, j]])     -- one raw LZ4 block (LZ4_compress_default)
-//   local h = torte.data.xxhash32(s [, seed=0 [, i [, j]]])   -- XXH32 of s:sub(i, j), an integer in [0, 2^32)
+//   torte.data.lz4_block, lz4_compress, xxhash32                 -- lua/bind_data_lz4.cc
 //
 // NBT tags become: byte/short/int/long -> integer, float/double -> number, string -> string, byte array ->
 // string (raw bytes), list -> array table, compound -> table, int array -> integer array table, long array ->
@@ -22,7 +20,6 @@
 // It returns a string of `count` little-endian int16 values -- the fields themselves, or map[field + 1] when a
 // `map` table is given (missing entries are 0) -- and a table counting how often each field value occurred
 // (counts[v + 1]).
-#include <lz4.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -537,121 +534,6 @@ int l_map_int16(lua_State* L) {
   return 1;
 }
 
-// ---- LZ4 and xxHash ------------------------------------------------------------------------------------------
-
-// The byte range [i, j] (1-based, inclusive, like string.sub; negative counts from the end) of the string at 1.
-std::string_view string_range(lua_State* L, const char* fn, int i_idx) {
-  if (lua_type(L, 1) != LUA_TSTRING) throw Error(std::string(fn) + " expects a string, got " + type_name(L, 1));
-  size_t n = 0;
-  const char* s = lua_tolstring(L, 1, &n);
-  auto index = [&](int idx, lua_Integer def) -> lua_Integer {
-    if (lua_isnoneornil(L, idx)) return def;
-    int ok = 0;
-    const lua_Integer v = lua_tointegerx(L, idx, &ok);
-    if (!ok) throw Error(std::string(fn) + ": argument " + std::to_string(idx) + " must be an integer");
-    return v < 0 ? lua_Integer(n) + v + 1 : v;
-  };
-  lua_Integer i = index(i_idx, 1), j = index(i_idx + 1, lua_Integer(n));
-  if (i < 1) i = 1;
-  if (j > lua_Integer(n)) j = lua_Integer(n);
-  if (i > j) return {};
-  return {s + (i - 1), size_t(j - i + 1)};
-}
-
-// lz4_block(s, size [, i [, j]]): decompresses one raw LZ4 block (no frame) that must give exactly `size` bytes.
-int l_lz4_block(lua_State* L) {
-  const char* fn = "torte.data.lz4_block";
-  int ok = 0;
-  const lua_Integer size = lua_tointegerx(L, 2, &ok);
-  if (!ok || size < 0 || size > 0x7fffffff)
-    throw Error(std::string(fn) + ": the decompressed size must be an integer in [0, 2^31), got " +
-                (lua_isnoneornil(L, 2) ? std::string("nothing") : std::string(luaL_tolstring(L, 2, nullptr))));
-  const std::string_view in = string_range(L, fn, 3);
-  if (in.size() > size_t(LZ4_MAX_INPUT_SIZE)) throw Error(std::string(fn) + ": input too large");
-  if (in.empty()) {
-    if (size == 0) {
-      lua_pushliteral(L, "");
-      return 1;
-    }
-    throw Error(std::string(fn) + ": empty input for " + std::to_string(size) + " bytes");
-  }
-  std::string out(size_t(size), '\0');
-  // LZ4_decompress_safe never reads or writes out of bounds; a negative result is a malformed or truncated block,
-  // or one that would decompress to more than `size` bytes.
-  const int got = LZ4_decompress_safe(in.data(), out.data(), int(in.size()), int(size));
-  if (got < 0)
-    throw Error(std::string(fn) + ": corrupt or truncated input (" + std::to_string(in.size()) +
-                " bytes do not decode as an LZ4 block of " + std::to_string(size) + " bytes, error at input byte " +
-                std::to_string(-got) + ")");
-  if (got != size)
-    throw Error(std::string(fn) + ": size mismatch: the block decompresses to " + std::to_string(got) +
-                " bytes, expected " + std::to_string(size));
-  lua_pushlstring(L, out.data(), out.size());
-  return 1;
-}
-
-// lz4_compress(s [, i [, j]]): one raw LZ4 block (for tests and writers).
-int l_lz4_compress(lua_State* L) {
-  const char* fn = "torte.data.lz4_compress";
-  const std::string_view in = string_range(L, fn, 2);
-  if (in.size() > size_t(LZ4_MAX_INPUT_SIZE)) throw Error(std::string(fn) + ": input too large");
-  std::string out(size_t(LZ4_compressBound(int(in.size()))), '\0');
-  const int n = LZ4_compress_default(in.data(), out.data(), int(in.size()), int(out.size()));
-  if (n <= 0 && !in.empty()) throw Error(std::string(fn) + ": compression failed");
-  lua_pushlstring(L, out.data(), size_t(std::max(n, 0)));
-  return 1;
-}
-
-// XXH32 (Yann Collet's xxHash, 32-bit variant), written from its specification.
-uint32_t xxh32(const unsigned char* p, size_t n, uint32_t seed) {
-  constexpr uint32_t P1 = 2654435761u, P2 = 2246822519u, P3 = 3266489917u, P4 = 668265263u, P5 = 374761393u;
-  auto rotl = [](uint32_t x, int r) { return (x << r) | (x >> (32 - r)); };
-  auto read32 = [](const unsigned char* q) {
-    return uint32_t(q[0]) | (uint32_t(q[1]) << 8) | (uint32_t(q[2]) << 16) | (uint32_t(q[3]) << 24);
-  };
-  auto round = [&](uint32_t acc, uint32_t in) { return rotl(acc + in * P2, 13) * P1; };
-  const unsigned char* end = p + n;
-  uint32_t h;
-  if (n >= 16) {
-    uint32_t v1 = seed + P1 + P2, v2 = seed + P2, v3 = seed, v4 = seed - P1;
-    const unsigned char* limit = end - 16;
-    do {
-      v1 = round(v1, read32(p));
-      v2 = round(v2, read32(p + 4));
-      v3 = round(v3, read32(p + 8));
-      v4 = round(v4, read32(p + 12));
-      p += 16;
-    } while (p <= limit);
-    h = rotl(v1, 1) + rotl(v2, 7) + rotl(v3, 12) + rotl(v4, 18);
-  } else {
-    h = seed + P5;
-  }
-  h += uint32_t(n);
-  for (; p + 4 <= end; p += 4) h = rotl(h + read32(p) * P3, 17) * P4;
-  for (; p < end; ++p) h = rotl(h + *p * P5, 11) * P1;
-  h ^= h >> 15;
-  h *= P2;
-  h ^= h >> 13;
-  h *= P3;
-  h ^= h >> 16;
-  return h;
-}
-
-// xxhash32(s [, seed [, i [, j]]]) -> integer in [0, 2^32).
-int l_xxhash32(lua_State* L) {
-  const char* fn = "torte.data.xxhash32";
-  lua_Integer seed = 0;
-  if (!lua_isnoneornil(L, 2)) {
-    int ok = 0;
-    seed = lua_tointegerx(L, 2, &ok);
-    if (!ok) throw Error(std::string(fn) + ": the seed must be an integer");
-  }
-  const std::string_view in = string_range(L, fn, 3);
-  lua_pushinteger(L, lua_Integer(xxh32(reinterpret_cast<const unsigned char*>(in.data()), in.size(),
-                                       uint32_t(uint64_t(seed) & 0xffffffffu))));
-  return 1;
-}
-
 }  // namespace
 
 void open_data(lua_State* L, int torte_index) {
@@ -673,12 +555,10 @@ void open_data(lua_State* L, int torte_index) {
                           {"nbt", guarded<l_nbt>},
                           {"unpack_bits", guarded<l_unpack_bits>},
                           {"map_int16", guarded<l_map_int16>},
-                          {"lz4_block", guarded<l_lz4_block>},
-                          {"lz4_compress", guarded<l_lz4_compress>},
-                          {"xxhash32", guarded<l_xxhash32>},
                           {nullptr, nullptr}};
   push_subtable(L, torte_index, "data");
   set_functions(L, fns);
+  set_data_lz4_functions(L);  // lua/bind_data_lz4.cc
   lua_pop(L, 1);
 }
 

@@ -47,6 +47,7 @@ void open_meshes(lua_State* L, int torte_index);     // torte.mesh.*, torte.cloc
 void open_textures(lua_State* L, int torte_index);   // torte.texture.* (lua/bind_texture.cc)
 void open_voxels(lua_State* L, int torte_index);     // torte.voxel.*, torte.shape.voxels (lua/bind_voxel.cc)
 void open_data(lua_State* L, int torte_index);       // torte.data.*: files, zlib/gzip, NBT, bit fields (lua/bind_data.cc)
+void set_data_lz4_functions(lua_State* L);  // lz4_block, lz4_compress, xxhash32 into the table on top of the stack
 // torte.shape.mesh's mesh=<torte.mesh> or file="path" (loaded now); nullptr when neither key is given.
 std::shared_ptr<const TriangleMesh> mesh_argument(KwArgs& kw);
 
