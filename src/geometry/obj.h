@@ -4,6 +4,11 @@
 // from the latest element), o/g, usemtl, mtllib; l, p, s and the free-form curve/surface statements are ignored.
 // Polygons are fan-triangulated from their first vertex. A position referenced with different uv or normal
 // indices becomes distinct vertices. MTL: newmtl, Kd, Ke and map_Kd (a file name, relative to the MTL file).
+//
+// Why not Debian's libtinyobjloader-dev (2.0.0~rc10): it reads damaged files without an error, which the renderer
+// must not (a corrupt mesh is an error naming file and line, never a silently wrong image). Tried 2026-11-22 with
+// ObjReader::ParseFromString: "v 1 abc 0" loads as (1, 0, 0), "v 0 1" as (0, 1, 0), "f 1 2 -5" on three vertices
+// loads, and "f 1 2 7" only warns. This reader rejects all four (tests/test_mesh_io.cc).
 #pragma once
 #include <string>
 #include <string_view>
