@@ -1,9 +1,14 @@
 // The huge-page allocator behind the BVH nodes and leaf triangles (core/huge_pages.h).
 #include <catch2/catch.hpp>
 
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdint>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "accel/wide_bvh.h"
 #include "core/huge_pages.h"
@@ -47,4 +52,28 @@ TEST_CASE("Small blocks keep their type's alignment and grow like any vector", "
   }
   CHECK(reinterpret_cast<uintptr_t>(nodes.data()) % huge_pages::kHugePage == 0);
   for (size_t i = 3; i < nodes.size(); ++i) REQUIRE(nodes[i].child[0] == uint32_t(i - 3));
+}
+
+TEST_CASE("fault_in makes a fresh block resident, zeros intact; make_huge_page_vector gives n zeros", "[huge_pages]") {
+  // 40 MiB and a bit (not a whole number of huge pages): above fault_in's 32 MiB threshold.
+  const size_t bytes = (size_t(40) << 20) + 12345;
+  char* const p = static_cast<char*>(huge_pages::allocate(bytes, 64));
+  const size_t page = size_t(sysconf(_SC_PAGESIZE));
+  const size_t pages = (bytes + page - 1) / page;
+  std::vector<unsigned char> resident(pages);
+  REQUIRE(mincore(p, bytes, resident.data()) == 0);
+  const auto count_resident = [&] { return size_t(std::count_if(resident.begin(), resident.end(),
+                                                                [](unsigned char r) { return (r & 1) != 0; })); };
+  INFO("resident before: " << count_resident() << " of " << pages);
+  huge_pages::fault_in(p, bytes);
+  REQUIRE(mincore(p, bytes, resident.data()) == 0);
+  CHECK(count_resident() == pages);  // every page of the range, the partial last one included
+  CHECK(std::all_of(p, p + bytes, [](char c) { return c == 0; }));
+  huge_pages::deallocate(p, bytes, 64);
+
+  for (const size_t n : {size_t(0), size_t(1000), (size_t(33) << 20) / sizeof(float) + 7}) {
+    const HugePageVector<float> v = make_huge_page_vector<float>(n);
+    CHECK(v.size() == n);
+    CHECK(std::all_of(v.begin(), v.end(), [](float x) { return x == 0.0f; }));
+  }
 }

@@ -478,7 +478,7 @@ HugePageVector<PrimRef> make_refs(std::span<const Bounds3f> prims, bool parallel
                   " has infinite bounds; only finite shapes can be placed in the scene.");
     offset[c + 1] += offset[c];
   }
-  HugePageVector<PrimRef> refs(offset[chunks]);
+  HugePageVector<PrimRef> refs = make_huge_page_vector<PrimRef>(offset[chunks]);
   std::vector<RangeBounds> chunk_bounds(chunks);
   for_chunks(prims.size(), parallel, [&](size_t c, size_t b, size_t e) {
     size_t out = offset[c];
@@ -514,12 +514,12 @@ BinaryBvh build_binary_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuild
   Builder builder(options, refs, scratch.get());
   builder.build(0, 0, uint32_t(refs.size()), 0, root);
   const size_t used = builder.node_count();
-  bvh.nodes.resize(used);
+  bvh.nodes = make_huge_page_vector<BinaryBvhNode>(used);
   for_chunks(used, options.parallel, [&](size_t, size_t b, size_t e) {
     std::copy(scratch.get() + b, scratch.get() + e, bvh.nodes.data() + b);
   });
   scratch.reset();
-  bvh.prim_indices.resize(refs.size());
+  bvh.prim_indices = make_huge_page_vector<uint32_t>(refs.size());
   for_chunks(refs.size(), options.parallel, [&](size_t, size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) bvh.prim_indices[i] = refs[i].prim;
   });

@@ -34,8 +34,8 @@ TriangleLeaves fill_leaves(const WideBvh<N>& bvh, bool parallel, Vertices&& vert
   const std::span<const uint32_t> prim_indices = bvh.prim_indices;
   const size_t n = prim_indices.size();
   if (n == 0) return leaves;
-  // resize zero-fills, which also writes the padding.
-  leaves.data.resize(9 * n + TriangleLeaves::kLeafPadding, 0.0f);
+  // Zero-filled, which also writes the padding.
+  leaves.data = make_huge_page_vector<float>(9 * n + TriangleLeaves::kLeafPadding);
   float* const data = leaves.data.data();
   // Every leaf is a slot of exactly one node: fill node by node.
   auto fill = [&](size_t b, size_t e) {

@@ -1,7 +1,10 @@
 #include "core/huge_pages.h"
 
 #include <sys/mman.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -45,6 +48,20 @@ void deallocate(void* p, size_t bytes, size_t align) noexcept {
     return;
   }
   ::munmap(p, round_up(bytes));
+}
+
+void fault_in(void* p, size_t bytes) {
+  constexpr size_t kMinBytes = size_t(32) << 20, kPage = 4096;
+  if (p == nullptr || bytes < kMinBytes) return;
+  char* const base = static_cast<char*>(p);
+  // Chunks of whole huge pages; within them every 4 KiB page is written, so ordinary pages (no huge-page advice)
+  // are faulted in too, and with huge pages the first write of each 2 MiB maps it and the rest find it mapped.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, (bytes + kHugePage - 1) / kHugePage),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      const size_t end = std::min(bytes, r.end() * kHugePage);
+                      for (size_t at = r.begin() * kHugePage; at < end; at += kPage)
+                        *static_cast<volatile char*>(base + at) = 0;
+                    });
 }
 
 size_t backed_bytes(const void* p) {

@@ -24,6 +24,13 @@ void* allocate(size_t bytes, size_t align);
 void deallocate(void* p, size_t bytes, size_t align) noexcept;
 // Bytes of `p`'s mapping backed by huge pages (from /proc/self/smaps), for tests and diagnostics; 0 when unknown.
 size_t backed_bytes(const void* p);
+// Faults the pages of a fresh block from allocate(bytes, ...) in from all threads (TBB), writing zeros, which a
+// fresh mapping holds anyway; does nothing below 32 MiB. Why: a block's first writes take one page fault per
+// page (per 2 MiB with huge pages), and a serial writer such as std::vector's zero fill takes them all on one
+// thread. On this VM the first touch of memory the host has not backed yet costs about 3.5 s per GiB on one
+// thread and half that on two (the kernel clears each page while the host maps it); a 28 M-triangle scene
+// touches 4-5 GB while it builds.
+void fault_in(void* p, size_t bytes);
 }  // namespace huge_pages
 
 // Standard allocator over huge_pages::allocate, for std::vector.
@@ -46,5 +53,16 @@ struct HugePageAllocator {
 
 template <class T>
 using HugePageVector = std::vector<T, HugePageAllocator<T>>;
+
+// n value-initialised elements, whose pages all threads faulted in before the (serial) initialisation: for
+// large arrays that will be written in full.
+template <class T>
+HugePageVector<T> make_huge_page_vector(size_t n) {
+  HugePageVector<T> v;
+  v.reserve(n);
+  if (n > 0) huge_pages::fault_in(v.data(), n * sizeof(T));
+  v.resize(n);
+  return v;
+}
 
 }  // namespace torte

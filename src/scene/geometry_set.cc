@@ -37,8 +37,9 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
   }
   if (input_triangles > kVoxelPrimBit) throw Error("more than 2^31 triangles in one scene or group");
   // Triangles: vertices per triangle, bounds, the wide BVH and its leaf-order vertex copy.
-  HugePageVector<Vec3f> vertices(input_triangles * 3);  // huge pages: fewer faults on big scenes
-  HugePageVector<Bounds3f> tri_bounds(input_triangles);
+  // Huge pages, faulted in by all threads (core/huge_pages.h): fewer and parallel faults on big scenes.
+  HugePageVector<Vec3f> vertices = make_huge_page_vector<Vec3f>(input_triangles * 3);
+  HugePageVector<Bounds3f> tri_bounds = make_huge_page_vector<Bounds3f>(input_triangles);
   // Parallel over meshes and, nested, over each mesh's triangles: one big mesh would otherwise run serially.
   tbb::parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
     const TriangleMesh& mesh = meshes[m];
