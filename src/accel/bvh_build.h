@@ -141,6 +141,11 @@ TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, std::span<const Vec3f
 // TriangleMesh::validate; only prim_indices are range-checked here).
 template <int N>
 TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, const TriangleMesh& mesh, bool parallel = true);
+// Same over several meshes numbered one after another: mesh m's triangle t is triangle mesh_first[m] + t
+// (mesh_first ascending, one entry per mesh, mesh_first[0] = 0).
+template <int N>
+TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, std::span<const TriangleMesh> meshes,
+                                    std::span<const uint32_t> mesh_first, bool parallel = true);
 
 extern template WideBvh<4> collapse<4>(const BinaryBvh&, const BvhBuildOptions&);
 extern template WideBvh<8> collapse<8>(const BinaryBvh&, const BvhBuildOptions&);
@@ -154,5 +159,9 @@ extern template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, std::s
 extern template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, std::span<const Vec3f>, bool);
 extern template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, const TriangleMesh&, bool);
 extern template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, const TriangleMesh&, bool);
+extern template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, std::span<const TriangleMesh>,
+                                                       std::span<const uint32_t>, bool);
+extern template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, std::span<const TriangleMesh>,
+                                                       std::span<const uint32_t>, bool);
 
 }  // namespace torte

@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <bit>
 #include <string>
 
@@ -100,9 +101,30 @@ TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, const TriangleMesh& m
   });
 }
 
+template <int N>
+TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, std::span<const TriangleMesh> meshes,
+                                    std::span<const uint32_t> mesh_first, bool parallel) {
+  if (mesh_first.size() != meshes.size())
+    throw Error("Triangle leaves: " + std::to_string(mesh_first.size()) + " first triangles for " +
+                std::to_string(meshes.size()) + " meshes.");
+  const size_t total = meshes.empty() ? 0 : mesh_first.back() + meshes.back().triangle_count();
+  check_prims(bvh.prim_indices, total);
+  return fill_leaves(bvh, parallel, [&](uint32_t t, Vec3f* p) {
+    // The last mesh starting at or before t (an empty mesh starts where the next one does).
+    const size_t m = size_t(std::upper_bound(mesh_first.begin(), mesh_first.end(), t) - mesh_first.begin() - 1);
+    const TriangleMesh& mesh = meshes[m];
+    const size_t local = t - mesh_first[m];
+    for (int j = 0; j < 3; ++j) p[j] = mesh.position(mesh.indices[3 * local + j]);
+  });
+}
+
 template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, std::span<const Vec3f>, bool);
 template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, std::span<const Vec3f>, bool);
 template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, const TriangleMesh&, bool);
 template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, const TriangleMesh&, bool);
+template TriangleLeaves make_triangle_leaves<4>(const WideBvh<4>&, std::span<const TriangleMesh>,
+                                                std::span<const uint32_t>, bool);
+template TriangleLeaves make_triangle_leaves<8>(const WideBvh<8>&, std::span<const TriangleMesh>,
+                                                std::span<const uint32_t>, bool);
 
 }  // namespace torte

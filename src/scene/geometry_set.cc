@@ -36,26 +36,24 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
     input_triangles += mesh.triangle_count();
   }
   if (input_triangles > kVoxelPrimBit) throw Error("more than 2^31 triangles in one scene or group");
-  // Triangles: vertices per triangle, bounds, the wide BVH and its leaf-order vertex copy.
-  // Huge pages, faulted in by all threads (core/huge_pages.h): fewer and parallel faults on big scenes.
-  HugePageVector<Vec3f> vertices = make_huge_page_vector<Vec3f>(input_triangles * 3);
+  // Triangles: bounds, the wide BVH, its leaf-order vertex copy (read straight from the meshes), then the meshes
+  // rewritten in leaf order. The bounds are on huge pages faulted in by all threads (core/huge_pages.h): fewer
+  // and parallel faults on big scenes.
   HugePageVector<Bounds3f> tri_bounds = make_huge_page_vector<Bounds3f>(input_triangles);
   // Parallel over meshes and, nested, over each mesh's triangles: one big mesh would otherwise run serially.
   tbb::parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
     const TriangleMesh& mesh = meshes[m];
     tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangle_count(), 8192),
                       [&](const tbb::blocked_range<size_t>& r) {
-                        for (size_t t = r.begin(); t < r.end(); ++t) {
-                          const size_t g = mesh_first[m] + t;
-                          for (int k = 0; k < 3; ++k) vertices[3 * g + k] = mesh.position(mesh.indices[3 * t + k]);
-                          tri_bounds[g] = mesh.triangle_bounds(t);
-                        }
+                        for (size_t t = r.begin(); t < r.end(); ++t)
+                          tri_bounds[mesh_first[m] + t] = mesh.triangle_bounds(t);
                       });
   });
   tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds);
-  tri_leaves_ = make_triangle_leaves(tri_bvh_, vertices);
-  store_in_leaf_order(meshes, mesh_first, std::as_writable_bytes(std::span(vertices)));
-  vertices = {};
+  tri_leaves_ = make_triangle_leaves(tri_bvh_, std::span<const TriangleMesh>(meshes), mesh_first);
+  // The bounds (24 bytes per triangle, already faulted in) are the reorder's scratch.
+  static_assert(sizeof(Bounds3f) >= 12);
+  store_in_leaf_order(meshes, mesh_first, std::as_writable_bytes(std::span(tri_bounds)));
   std::vector<Bounds3f> quadric_bounds(quadrics.size());
   for (size_t q = 0; q < quadrics.size(); ++q) quadric_bounds[q] = world_bounds(quadrics[q]);
   quadric_bvh_.build(quadric_bounds);
@@ -71,7 +69,7 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
 // Parallel over blocks of leaf positions: a triangle's index in its mesh is its rank among the mesh's triangles
 // in leaf order, so each block counts its triangles per mesh, an exclusive scan over the blocks gives every
 // block its starting rank per mesh, and a second pass writes. The reordered triples are staged in `scratch` (at
-// least 12 bytes per triangle, memory the build has already touched) and copied back over each mesh's own index
+// least 12 bytes per triangle, memory the build has already faulted in) and copied back over each mesh's own index
 // array: fresh arrays would cost a page fault per 4 KiB (1.5 s for 28 M triangles on this VM, more than the
 // reorder itself).
 void GeometrySet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first,
