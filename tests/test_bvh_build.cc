@@ -394,10 +394,24 @@ TEST_CASE("bvh_build: triangle leaves in leaf order, one block per leaf, padded"
   for (uint32_t t = 0; t < 300; ++t) mesh.add_triangle(899 - 3 * t, 898 - 3 * t, 897 - 3 * t);
   const TriangleLeaves m = make_triangle_leaves(bvh, mesh);
   CHECK(m.data == l.data);
+  // The several-meshes overload: triangles 0..99 in one mesh, none in a second, 100..299 in a third.
+  std::vector<TriangleMesh> parts(3);
+  for (uint32_t t = 0; t < 300; ++t) {
+    TriangleMesh& part = parts[t < 100 ? 0 : 2];
+    const uint32_t v = uint32_t(part.vertex_count());
+    for (int k = 0; k < 3; ++k) part.add_vertex(verts[3 * t + k]);
+    part.add_triangle(v, v + 1, v + 2);
+  }
+  const std::vector<uint32_t> part_first = {0, 100, 100};
+  CHECK(make_triangle_leaves(bvh, std::span<const TriangleMesh>(parts), part_first).data == l.data);
+  CHECK_THROWS_AS(make_triangle_leaves(bvh, std::span<const TriangleMesh>(parts), std::vector<uint32_t>{0, 100}),
+                  Error);
   WideBvh<8> bad = bvh;
   bad.prim_indices[0] = 300;
   CHECK_THROWS_WITH(make_triangle_leaves(bad, verts), Catch::Contains("out of range"));
   CHECK_THROWS_WITH(make_triangle_leaves(bad, mesh), Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(make_triangle_leaves(bad, std::span<const TriangleMesh>(parts), part_first),
+                    Catch::Contains("out of range"));
   CHECK_THROWS_AS(make_triangle_leaves(bvh, std::span<const Vec3f>(verts.data(), 4)), Error);
 }
 
