@@ -3,7 +3,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <algorithm>
 #include <bit>
 #include <string>
 
@@ -110,8 +109,7 @@ TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, std::span<const Trian
   const size_t total = meshes.empty() ? 0 : mesh_first.back() + meshes.back().triangle_count();
   check_prims(bvh.prim_indices, total);
   return fill_leaves(bvh, parallel, [&](uint32_t t, Vec3f* p) {
-    // The last mesh starting at or before t (an empty mesh starts where the next one does).
-    const size_t m = size_t(std::upper_bound(mesh_first.begin(), mesh_first.end(), t) - mesh_first.begin() - 1);
+    const uint32_t m = mesh_holding(mesh_first, t);
     const TriangleMesh& mesh = meshes[m];
     const size_t local = t - mesh_first[m];
     for (int j = 0; j < 3; ++j) p[j] = mesh.position(mesh.indices[3 * local + j]);

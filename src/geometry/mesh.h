@@ -1,6 +1,8 @@
 // Triangle mesh in structure-of-arrays form: positions, optional vertex normals and uvs, index triples.
 #pragma once
+#include <algorithm>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -35,6 +37,12 @@ struct TriangleMesh {
   Bounds3f triangle_bounds(size_t tri) const;
   float triangle_area(size_t tri) const;
 };
+
+// Meshes numbered one after another, mesh m's triangles from mesh_first[m] on (ascending, mesh_first[0] = 0):
+// the mesh holding triangle g, the last one starting at or before g (an empty mesh starts where the next one does).
+inline uint32_t mesh_holding(std::span<const uint32_t> mesh_first, uint32_t g) {
+  return uint32_t(std::upper_bound(mesh_first.begin(), mesh_first.end(), g) - mesh_first.begin() - 1);
+}
 
 // Unit cube [-1,1]^3 as 12 outward-facing triangles with per-face uvs.
 TriangleMesh make_cube();

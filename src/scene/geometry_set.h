@@ -95,11 +95,6 @@ class GeometrySet {
   struct TriangleRef {
     uint32_t mesh, local;
   };
-  // The mesh holding triangle g of the meshes concatenated (mesh_first: each mesh's first triangle there): the
-  // last one starting at or before g (an empty mesh starts where the next one does).
-  static uint32_t mesh_holding(std::span<const uint32_t> mesh_first, uint32_t g) {
-    return uint32_t(std::upper_bound(mesh_first.begin(), mesh_first.end(), g) - mesh_first.begin() - 1);
-  }
   TriangleRef triangle_ref(uint32_t prim) const {
     if (!tri_ref_) return {0, prim};
     const uint32_t g = tri_ref_[prim], m = mesh_holding(mesh_first_, g);
