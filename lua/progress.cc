@@ -20,7 +20,8 @@ std::string format_duration(double s) {
   return buf;
 }
 
-ConsoleProgress::ConsoleProgress(std::string label) : label_(std::move(label)), tty_(isatty(STDERR_FILENO)) {}
+ConsoleProgress::ConsoleProgress(std::string label, std::string rate_unit)
+    : label_(std::move(label)), rate_unit_(std::move(rate_unit)), tty_(isatty(STDERR_FILENO)) {}
 
 void ConsoleProgress::update(uint64_t done, uint64_t total, uint64_t rays, double elapsed) {
   std::unique_lock lock(mutex_, std::try_to_lock);
@@ -42,11 +43,12 @@ void ConsoleProgress::update(uint64_t done, uint64_t total, uint64_t rays, doubl
     const int width = 30, filled = int(fraction * width);
     std::string bar(size_t(filled), '#');
     bar.append(size_t(width - filled), '-');
-    std::snprintf(line, sizeof line, "\r%s [%s] %3d%%  %.2f Mrays/s  %s elapsed, ETA %s   ", label_.c_str(),
-                  bar.c_str(), percent, mrays, format_duration(elapsed).c_str(), format_duration(eta).c_str());
+    std::snprintf(line, sizeof line, "\r%s [%s] %3d%%  %.2f %s  %s elapsed, ETA %s   ", label_.c_str(), bar.c_str(),
+                  percent, mrays, rate_unit_.c_str(), format_duration(elapsed).c_str(),
+                  format_duration(eta).c_str());
   } else {
-    std::snprintf(line, sizeof line, "%s: %3d%%  %.2f Mrays/s  %s elapsed, ETA %s\n", label_.c_str(), percent,
-                  mrays, format_duration(elapsed).c_str(), format_duration(eta).c_str());
+    std::snprintf(line, sizeof line, "%s: %3d%%  %.2f %s  %s elapsed, ETA %s\n", label_.c_str(), percent, mrays,
+                  rate_unit_.c_str(), format_duration(elapsed).c_str(), format_duration(eta).c_str());
   }
   std::fputs(line, stderr);
   std::fflush(stderr);

@@ -168,6 +168,20 @@ TEST_CASE("geometry_set: every triangle of a large several-mesh set finds its ow
   CHECK(bad == 0);
 }
 
+TEST_CASE("geometry_set: a scene's build progress adds up to its total, triangles left out included", "[geometry_set]") {
+  Scene scene;
+  scene.meshes = {grid_mesh(60, 0.0f, 0.0f), grid_mesh(40, 0.5f, 1.0f)};
+  const uint32_t bad = uint32_t(scene.meshes[1].vertex_count());
+  scene.meshes[1].add_vertex({std::numeric_limits<float>::quiet_NaN(), 0, 0});
+  scene.meshes[1].add_triangle(bad, bad, bad);  // NaN bounds: the tree leaves it out
+  scene.objects.resize(scene.meshes.size());
+  ProgressCounter progress;
+  scene.finalize(&progress);
+  const uint64_t triangles = 2 * 60 * 60 + 2 * 40 * 40 + 1;
+  CHECK(progress.total.load() == 2 * triangles);  // two units per triangle: the BVH build, then the rest
+  CHECK(progress.done.load() == 2 * triangles);
+}
+
 TEST_CASE("geometry_set: a triangle the tree leaves out stays in its mesh, after the others", "[geometry_set]") {
   std::vector<TriangleMesh> meshes{grid_mesh(3, 0.0f, 0.0f), grid_mesh(2, 1.0f, 0.0f)};
   // A triangle of NaN vertices has NaN bounds: nothing can hit it, so the BVH leaves it out.

@@ -113,7 +113,9 @@ class Builder {
       : o_(options), refs_(refs), nodes_(nodes), block_shift_(std::countr_zero(uint32_t(options.leaf_block_size))),
         block_mask_(uint32_t(options.leaf_block_size) - 1) {}
 
-  void build(uint32_t node, uint32_t begin, uint32_t end, int depth, const RangeBounds& rb) {
+  // report: this node adds its primitives to o_.progress when its subtree is done (the root, and the children of
+  // nodes split into parallel tasks; the nodes below a serial node are counted by it).
+  void build(uint32_t node, uint32_t begin, uint32_t end, int depth, const RangeBounds& rb, bool report) {
     nodes_[node].bounds = rb.nb;
     const uint32_t count = end - begin;
     const bool may_be_leaf = count <= uint32_t(o_.max_leaf_size);
@@ -152,6 +154,7 @@ class Builder {
     if (mid == begin) {
       nodes_[node].first = begin;
       nodes_[node].count = count;
+      if (report && o_.progress) o_.progress->add(count);
       return;
     }
     // Children as an adjacent pair from the shared counter: subtrees built concurrently never touch the same
@@ -159,13 +162,15 @@ class Builder {
     const uint32_t pair = next_node_.fetch_add(2, std::memory_order_relaxed);
     nodes_[node].first = pair;
     nodes_[node].count = 0;
-    auto build_left = [&] { build(pair, begin, mid, depth + 1, left); };
-    auto build_right = [&] { build(pair + 1, mid, end, depth + 1, right); };
-    if (o_.parallel && count >= kParallelSubtreeMin) {
+    const bool fork = o_.parallel && count >= kParallelSubtreeMin;
+    auto build_left = [&] { build(pair, begin, mid, depth + 1, left, fork); };
+    auto build_right = [&] { build(pair + 1, mid, end, depth + 1, right, fork); };
+    if (fork) {
       tbb::parallel_invoke(build_left, build_right);
     } else {
       build_left();
       build_right();
+      if (report && o_.progress) o_.progress->add(count);
     }
   }
 
@@ -512,7 +517,7 @@ BinaryBvh build_binary_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuild
   std::unique_ptr<BinaryBvhNode, decltype(free_nodes)> scratch(
       static_cast<BinaryBvhNode*>(huge_pages::allocate(scratch_bytes, alignof(BinaryBvhNode))), free_nodes);
   Builder builder(options, refs, scratch.get());
-  builder.build(0, 0, uint32_t(refs.size()), 0, root);
+  builder.build(0, 0, uint32_t(refs.size()), 0, root, /*report=*/true);
   const size_t used = builder.node_count();
   bvh.nodes = make_huge_page_vector<BinaryBvhNode>(used);
   for_chunks(used, options.parallel, [&](size_t, size_t b, size_t e) {

@@ -21,6 +21,7 @@
 
 #include "accel/wide_bvh.h"
 #include "core/bounds.h"
+#include "core/progress_counter.h"
 #include "core/vec.h"
 
 namespace torte {
@@ -67,6 +68,9 @@ struct BvhBuildOptions {
   CollapseMode collapse = CollapseMode::SahOptimal;
   // Executor seam: false runs every step on the calling thread (tests; callers that parallelise above us).
   bool parallel = true;
+  // When set, the binary build adds every primitive to progress->done once the subtree holding it is built
+  // (in steps of whole serial subtrees); the caller sets progress->total.
+  ProgressCounter* progress = nullptr;
 };
 
 // 32 bytes, two per cache line. Interior (count == 0): children are nodes first and first + 1. Leaf: primitives

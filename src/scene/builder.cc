@@ -231,7 +231,7 @@ struct SceneBuilder::Flattening {
   }
 };
 
-std::shared_ptr<Scene> SceneBuilder::flatten() const {
+std::shared_ptr<Scene> SceneBuilder::flatten(ProgressCounter* progress) const {
   auto scene = std::make_shared<Scene>();
   Flattening f(*scene);
 
@@ -267,7 +267,7 @@ std::shared_ptr<Scene> SceneBuilder::flatten() const {
   scene->textures = f.textures.finish();
   scene->camera = camera_;
   scene->has_camera = has_camera_;
-  scene->finalize();
+  scene->finalize(progress);
   return scene;
 }
 

@@ -41,8 +41,9 @@ class SceneBuilder {
   size_t light_count() const { return lights_.size(); }
   size_t instance_count() const { return instances_.size(); }
 
-  // Throws torte::Error on invalid content (bad meshes, degenerate shapes).
-  std::shared_ptr<Scene> flatten() const;
+  // Throws torte::Error on invalid content (bad meshes, degenerate shapes). `progress` (optional): see
+  // Scene::finalize.
+  std::shared_ptr<Scene> flatten(ProgressCounter* progress = nullptr) const;
 
  private:
   struct Flattening;

@@ -22,7 +22,7 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
 }
 
 void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
-                        const std::vector<VoxelGridAccel>& grids, uint32_t object_base) {
+                        const std::vector<VoxelGridAccel>& grids, uint32_t object_base, ProgressCounter* progress) {
   if (grids.size() > kMaxVoxelGridsPerSet) throw Error("more than 2048 voxel grids in one scene or group");
   grids_ = &grids;
   meshes_ = &meshes;
@@ -49,11 +49,19 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
                           tri_bounds[mesh_first[m] + t] = mesh.triangle_bounds(t);
                       });
   });
-  tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds);
+  BvhBuildOptions options;
+  options.progress = progress;
+  tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds, options);
+  const auto report = [&](size_t units) {
+    if (progress) progress->add(units);
+  };
+  report(input_triangles - tri_bvh_.prim_indices.size());  // triangles the tree left out (empty bounds)
   tri_leaves_ = make_triangle_leaves(tri_bvh_, std::span<const TriangleMesh>(meshes), mesh_first);
+  report(input_triangles / 2);
   // The bounds (24 bytes per triangle, already faulted in) are the reorder's scratch.
   static_assert(sizeof(Bounds3f) >= 12);
   store_in_leaf_order(meshes, mesh_first, std::as_writable_bytes(std::span(tri_bounds)));
+  report(input_triangles - input_triangles / 2);
   std::vector<Bounds3f> quadric_bounds(quadrics.size());
   for (size_t q = 0; q < quadrics.size(); ++q) quadric_bounds[q] = world_bounds(quadrics[q]);
   quadric_bvh_.build(quadric_bounds);

@@ -18,6 +18,7 @@
 #include "accel/bvh_build.h"
 #include "accel/hit.h"
 #include "accel/wide_bvh.h"
+#include "core/progress_counter.h"
 #include "geometry/mesh.h"
 #include "geometry/quadric.h"
 #include "voxel/voxel_accel.h"
@@ -46,8 +47,10 @@ class GeometrySet {
   void build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics, uint32_t object_base);
   // With voxel grids: their objects follow the quadrics'. Voxel hits have prim >= kVoxelPrimBit (see
   // voxel/voxel_accel.h for the encoding).
+  // `progress` (optional) gets 2 units per input triangle as the build goes (the caller sets its total): one
+  // from the binary BVH build, one from the steps after it.
   void build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
-             const std::vector<VoxelGridAccel>& grids, uint32_t object_base);
+             const std::vector<VoxelGridAccel>& grids, uint32_t object_base, ProgressCounter* progress = nullptr);
 
   // Triangles in the BVH (all but those with empty bounds, which nothing can hit).
   uint32_t triangle_count() const { return triangle_count_; }

@@ -13,15 +13,22 @@
 
 namespace torte {
 
-void Scene::finalize() {
+void Scene::finalize(ProgressCounter* progress) {
   uint32_t object_base = uint32_t(meshes.size() + quadrics.size() + grids.size());
   for (const auto& proto : prototypes)
     object_base += uint32_t(proto->meshes.size() + proto->quadrics.size() + proto->grids.size());
   if (objects.size() != object_base) throw Error("internal: scene objects do not match its shapes");
-  root_.build(meshes, quadrics, grids, 0);
+  if (progress) {
+    uint64_t triangles = 0;
+    for (const TriangleMesh& m : meshes) triangles += m.triangle_count();
+    for (const auto& proto : prototypes)
+      for (const TriangleMesh& m : proto->meshes) triangles += m.triangle_count();
+    progress->total = 2 * triangles;
+  }
+  root_.build(meshes, quadrics, grids, 0, progress);
   object_base = uint32_t(meshes.size() + quadrics.size() + grids.size());
   for (const auto& proto : prototypes) {
-    proto->geometry.build(proto->meshes, proto->quadrics, proto->grids, object_base);
+    proto->geometry.build(proto->meshes, proto->quadrics, proto->grids, object_base, progress);
     object_base += uint32_t(proto->meshes.size() + proto->quadrics.size() + proto->grids.size());
   }
   // The instance level: a BVH2 over the instances' world bounds (the bottom levels are the prototypes').
