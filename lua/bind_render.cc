@@ -21,7 +21,7 @@ namespace {
 std::shared_ptr<Scene> build_scene(const SceneBuilder& scene, bool quiet) {
   if (quiet) return scene.flatten();
   ProgressCounter counter;
-  ConsoleProgress console("scene build", "Mtris/s");  // 2 units per triangle: the rate is done / 2
+  ConsoleProgress console("scene build", "Mtris/s");
   std::mutex mutex;
   std::condition_variable wake;
   bool finished = false;
@@ -31,7 +31,8 @@ std::shared_ptr<Scene> build_scene(const SceneBuilder& scene, bool quiet) {
     while (!wake.wait_for(lock, std::chrono::milliseconds(100), [&] { return finished; })) {
       const uint64_t total = counter.total.load(), done = std::min(counter.done.load(), total);
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (total > 0 && done < total) console.update(done, total, done / 2, elapsed);
+      if (total > 0 && done < total)
+        console.update(done, total, done / GeometrySet::kProgressPerTriangle, elapsed);  // rate: triangles/s
     }
   });
   const auto stop = [&] {

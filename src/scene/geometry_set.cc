@@ -47,14 +47,15 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
                       [&](const tbb::blocked_range<size_t>& r) {
                         for (size_t t = r.begin(); t < r.end(); ++t)
                           tri_bounds[mesh_first[m] + t] = mesh.triangle_bounds(t);
+                        if (progress) progress->add(r.size());
                       });
   });
-  BvhBuildOptions options;
-  options.progress = progress;
-  tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds, options);
   const auto report = [&](size_t units) {
     if (progress) progress->add(units);
   };
+  BvhBuildOptions options;
+  options.progress = progress;
+  tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds, options);
   report(input_triangles - tri_bvh_.prim_indices.size());  // triangles the tree left out (empty bounds)
   tri_leaves_ = make_triangle_leaves(tri_bvh_, std::span<const TriangleMesh>(meshes), mesh_first);
   report(input_triangles / 2);

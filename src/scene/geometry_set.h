@@ -39,6 +39,7 @@ struct SurfaceHit {
 
 class GeometrySet {
  public:
+  static constexpr uint64_t kProgressPerTriangle = 3;
   // Builds the BVHs. Object i of this set is meshes[i] for i < meshes.size(), then the quadrics, numbered from
   // object_base in the scene's object table. Reorders each mesh's triangles into the BVH's leaf order (their
   // order means nothing else to the renderer), so triangle numbers in hits are leaf positions and a one-mesh set
@@ -47,8 +48,8 @@ class GeometrySet {
   void build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics, uint32_t object_base);
   // With voxel grids: their objects follow the quadrics'. Voxel hits have prim >= kVoxelPrimBit (see
   // voxel/voxel_accel.h for the encoding).
-  // `progress` (optional) gets 2 units per input triangle as the build goes (the caller sets its total): one
-  // from the binary BVH build, one from the steps after it.
+  // `progress` (optional) gets kProgressPerTriangle units per input triangle as the build goes (the caller sets
+  // its total): one as the triangle bounds are computed, one from the binary BVH build, one from the steps after.
   void build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
              const std::vector<VoxelGridAccel>& grids, uint32_t object_base, ProgressCounter* progress = nullptr);
 

@@ -23,7 +23,7 @@ void Scene::finalize(ProgressCounter* progress) {
     for (const TriangleMesh& m : meshes) triangles += m.triangle_count();
     for (const auto& proto : prototypes)
       for (const TriangleMesh& m : proto->meshes) triangles += m.triangle_count();
-    progress->total = 2 * triangles;
+    progress->total = GeometrySet::kProgressPerTriangle * triangles;
   }
   root_.build(meshes, quadrics, grids, 0, progress);
   object_base = uint32_t(meshes.size() + quadrics.size() + grids.size());

@@ -79,7 +79,8 @@ class Scene {
 
   // Builds the BVHs (top-level geometry, every prototype, the instance level) and the light distribution; call
   // after filling the arrays above.
-  // `progress` (optional): its total is set to 2 units per triangle of the scene, which the builds add up.
+  // `progress` (optional): its total is set to GeometrySet::kProgressPerTriangle units per triangle of the scene,
+  // which the builds add up.
   void finalize(ProgressCounter* progress = nullptr);
 
   // Top-level (non-instanced) geometry.
