@@ -51,11 +51,12 @@ template <int N>
 uint32_t copy_subtree(const BuiltNode& node, WideBvh<N>& bvh) {
   const uint32_t index = uint32_t(bvh.nodes.size());
   bvh.nodes.emplace_back();
-  uint32_t child[N];
-  uint8_t leaf_count[N];
+  Bounds3f bounds[N];
+  uint32_t child[N], leaf_count[N];
   for (unsigned i = 0; i < node.count; ++i) {
     const BuiltNode& c = *static_cast<const BuiltNode*>(node.child[i]);
-    leaf_count[i] = c.leaf ? uint8_t(c.count) : 0;
+    bounds[i] = to_bounds(node.bounds[i]);
+    leaf_count[i] = c.leaf ? c.count : 0;
     if (c.leaf) {
       child[i] = kLeafFlag | uint32_t(bvh.prim_indices.size());
       bvh.prim_indices.insert(bvh.prim_indices.end(), c.tris, c.tris + c.count);
@@ -63,15 +64,7 @@ uint32_t copy_subtree(const BuiltNode& node, WideBvh<N>& bvh) {
       child[i] = copy_subtree<N>(c, bvh);  // may reallocate bvh.nodes: index, not reference
     }
   }
-  WideNode<N>& w = bvh.nodes[index];
-  for (int i = 0; i < N; ++i) {
-    const bool used = unsigned(i) < node.count;
-    const Bounds3f b = used ? to_bounds(node.bounds[i]) : Bounds3f{};  // empty slots: lo = +inf, hi = -inf
-    w.lo_x[i] = b.lo.x, w.lo_y[i] = b.lo.y, w.lo_z[i] = b.lo.z;
-    w.hi_x[i] = b.hi.x, w.hi_y[i] = b.hi.y, w.hi_z[i] = b.hi.z;
-    w.child[i] = used ? child[i] : kEmptyChild;
-    w.leaf_count[i] = used ? leaf_count[i] : 0;
-  }
+  write_wide_node<N>(bvh.nodes[index], int(node.count), bounds, child, leaf_count);
   return index;
 }
 

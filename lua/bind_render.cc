@@ -1,6 +1,5 @@
 // torte.scene() and its methods, torte.render{...}, torte.filter.* and the image returned by render.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>

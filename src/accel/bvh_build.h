@@ -108,6 +108,11 @@ BinaryBvh build_binary_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuild
 // holds more than 255 primitives.
 template <int N>
 WideBvh<N> collapse(const BinaryBvh& binary, const BvhBuildOptions& options = {});
+// Writes one wide node: slots [0, k) from bounds, child references and leaf counts (used for leaf children
+// only), the other slots empty (lo = +inf, hi = -inf, kEmptyChild). Throws torte::Error for a leaf of more than
+// 255 primitives. For builders that make wide nodes from trees of their own.
+template <int N>
+void write_wide_node(WideNode<N>& w, int k, const Bounds3f* bounds, const uint32_t* child, const uint32_t* count);
 
 template <int N>
 WideBvh<N> build_wide_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options = {});
@@ -151,6 +156,8 @@ template <int N>
 TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, std::span<const TriangleMesh> meshes,
                                     std::span<const uint32_t> mesh_first, bool parallel = true);
 
+extern template void write_wide_node<4>(WideNode<4>&, int, const Bounds3f*, const uint32_t*, const uint32_t*);
+extern template void write_wide_node<8>(WideNode<8>&, int, const Bounds3f*, const uint32_t*, const uint32_t*);
 extern template WideBvh<4> collapse<4>(const BinaryBvh&, const BvhBuildOptions&);
 extern template WideBvh<8> collapse<8>(const BinaryBvh&, const BvhBuildOptions&);
 extern template WideBvh<4> build_wide_bvh<4>(std::span<const Bounds3f>, const BvhBuildOptions&);

@@ -9,16 +9,10 @@
 #include "core/error.h"
 
 namespace torte {
-namespace {
 
-// The SAH dynamic programme runs the two subtrees of every node this close to the root as parallel tasks
-// (2^10 tasks at most), if the tree is big enough for tasks to pay.
-constexpr int kParallelDepth = 10;
-constexpr size_t kParallelNodesMin = 8192;
-
-// Writes one wide node: `k` occupied slots (bounds, child reference, leaf count), then empty ones.
+// One wide node from k occupied slots (see bvh_build.h).
 template <int N>
-void write_node(WideNode<N>& w, int k, const Bounds3f* bounds, const uint32_t* child, const uint32_t* count) {
+void write_wide_node(WideNode<N>& w, int k, const Bounds3f* bounds, const uint32_t* child, const uint32_t* count) {
   for (int i = 0; i < N; ++i) {
     const bool used = i < k;
     const Bounds3f box = used ? bounds[i] : Bounds3f{};  // empty: lo = +inf, hi = -inf
@@ -31,6 +25,13 @@ void write_node(WideNode<N>& w, int k, const Bounds3f* bounds, const uint32_t* c
     w.leaf_count[i] = used && (child[i] & kLeafFlag) ? uint8_t(count[i]) : 0;
   }
 }
+
+namespace {
+
+// The SAH dynamic programme runs the two subtrees of every node this close to the root as parallel tasks
+// (2^10 tasks at most), if the tree is big enough for tasks to pay.
+constexpr int kParallelDepth = 10;
+constexpr size_t kParallelNodesMin = 8192;
 
 // Greedy collapse: open the largest-area interior slot until N slots are filled.
 template <int N>
@@ -76,7 +77,7 @@ class GreedyCollapser {
       count[i] = n.count;
       child[i] = n.count == 0 ? emit(slot[i]) : kLeafFlag | n.first;  // emit may reallocate wide_.nodes
     }
-    write_node(wide_.nodes[index], k, bounds, child, count);
+    write_wide_node<N>(wide_.nodes[index], k, bounds, child, count);
     return index;
   }
 
@@ -110,7 +111,7 @@ class OptimalCollapser {
     }
     wide_.nodes.emplace_back();  // the whole tree is one leaf: a root with one leaf child
     const uint32_t child = kLeafFlag | dp_[0].first;
-    write_node(wide_.nodes[0], 1, &bin_[0].bounds, &child, &dp_[0].count);
+    write_wide_node<N>(wide_.nodes[0], 1, &bin_[0].bounds, &child, &dp_[0].count);
   }
 
  private:
@@ -199,7 +200,7 @@ class OptimalCollapser {
       count[i] = e.count;
       child[i] = e.leaf ? kLeafFlag | e.first : emit(slot[i]);  // emit may reallocate wide_.nodes
     }
-    write_node(wide_.nodes[index], k, bounds, child, count);
+    write_wide_node<N>(wide_.nodes[index], k, bounds, child, count);
     return index;
   }
 
@@ -303,6 +304,8 @@ BvhStats bvh_stats(const WideBvh<N>& bvh) {
   return s;
 }
 
+template void write_wide_node<4>(WideNode<4>&, int, const Bounds3f*, const uint32_t*, const uint32_t*);
+template void write_wide_node<8>(WideNode<8>&, int, const Bounds3f*, const uint32_t*, const uint32_t*);
 template WideBvh<4> collapse<4>(const BinaryBvh&, const BvhBuildOptions&);
 template WideBvh<8> collapse<8>(const BinaryBvh&, const BvhBuildOptions&);
 template WideBvh<4> build_wide_bvh<4>(std::span<const Bounds3f>, const BvhBuildOptions&);

@@ -39,6 +39,9 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
   // Triangles: bounds, the wide BVH, its leaf-order vertex copy (read straight from the meshes), then the meshes
   // rewritten in leaf order. The bounds are on huge pages faulted in by all threads (core/huge_pages.h): fewer
   // and parallel faults on big scenes.
+  const auto report = [&](size_t units) {
+    if (progress) progress->add(units);
+  };
   HugePageVector<Bounds3f> tri_bounds = make_huge_page_vector<Bounds3f>(input_triangles);
   // Parallel over meshes and, nested, over each mesh's triangles: one big mesh would otherwise run serially.
   tbb::parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
@@ -47,12 +50,9 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
                       [&](const tbb::blocked_range<size_t>& r) {
                         for (size_t t = r.begin(); t < r.end(); ++t)
                           tri_bounds[mesh_first[m] + t] = mesh.triangle_bounds(t);
-                        if (progress) progress->add(r.size());
+                        report(r.size());
                       });
   });
-  const auto report = [&](size_t units) {
-    if (progress) progress->add(units);
-  };
   BvhBuildOptions options;
   options.progress = progress;
   tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds, options);
