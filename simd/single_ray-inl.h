@@ -20,6 +20,8 @@
 
 #include <hwy/highway.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include "accel/hit.h"
@@ -33,20 +35,23 @@ namespace {
 // Rays per block: a multiple of every target's float lane count (at most 16).
 constexpr size_t kRayBlock = 16;
 
-// Constants of up to kRayBlock rays, structure of arrays (index = ray), 64-byte aligned arrays: 1,664 bytes.
+// Constants of up to kRayBlock rays, structure of arrays (index = ray), 64-byte aligned arrays: 2,048 bytes.
 struct RayBlock {
   alignas(64) float o[3][kRayBlock];          // origin
   alignas(64) float inv_d[3][kRayBlock];      // 1 / direction (-0 gives -inf)
-  alignas(64) float inv_d_far[3][kRayBlock];  // inv_d * kFarRound: the far planes' rounding folded in
+  alignas(64) float inv_d_far[3][kRayBlock];  // exact slab test: inv_d * kFarRound, the far rounding folded in
+  alignas(64) float org_near[3][kRayBlock];   // FMA slab test: o * inv_d + margin (traverse_detail::SlabMargin)
+  alignas(64) float org_far[3][kRayBlock];    // ... and o * inv_d - margin
   alignas(64) uint32_t near_off[3][kRayBlock];  // per axis, node_floats offset of the entry plane array
   alignas(64) uint32_t far_off[3][kRayBlock];   // ... and of the exit plane array
   alignas(64) int32_t k[3][kRayBlock];        // watertight test: axes kx, ky, kz (WatertightRay)
   alignas(64) float ok[3][kRayBlock];         // origin on those axes: o[kx], o[ky], o[kz]
   alignas(64) float s[3][kRayBlock];          // shear sx, sy, sz
   alignas(64) float t_max[kRayBlock];
-  uint32_t valid = 0;  // bit j: ray j can hit something (traverse_detail::is_valid_ray)
+  uint32_t valid = 0;      // bit j: ray j can hit something (traverse_detail::is_valid_ray)
+  uint32_t fma_slabs = 0;  // bit j: ray j takes the FMA slab test (traverse_detail::fma_slab_axis)
 };
-static_assert(sizeof(RayBlock) == 1664);
+static_assert(sizeof(RayBlock) == 2048);
 
 // One ray of a RayBlock, as the kernel sees it.
 struct SingleRay {
@@ -57,6 +62,9 @@ struct SingleRay {
   float o(int a) const { return b->o[a][j]; }
   float inv_d(int a) const { return b->inv_d[a][j]; }
   float inv_d_far(int a) const { return b->inv_d_far[a][j]; }
+  float org_near(int a) const { return b->org_near[a][j]; }
+  float org_far(int a) const { return b->org_far[a][j]; }
+  bool fma_slabs() const { return (b->fma_slabs >> j) & 1; }
   uint32_t near_off(int a) const { return b->near_off[a][j]; }
   uint32_t far_off(int a) const { return b->far_off[a][j]; }
   int k(int a) const { return b->k[a][j]; }
@@ -79,15 +87,23 @@ struct SingleRay {
 };
 
 // Entry j of `b` from one ray, with the scalar code itself (the reference for SetupRays).
+// `extent`: the tree's plane_extent.
 template <int N>
-HWY_INLINE void SetupRay(const Ray& ray, RayBlock& b, size_t j) {
+HWY_INLINE void SetupRay(const Ray& ray, const float extent[3], RayBlock& b, size_t j) {
   const WatertightRay wr(ray);
+  bool fma = true;
   const int k[3] = {wr.kx, wr.ky, wr.kz};
   const float s[3] = {wr.sx, wr.sy, wr.sz};
   for (int a = 0; a < 3; ++a) {
     b.o[a][j] = ray.o[a];
     b.inv_d[a][j] = 1.0f / ray.d[a];
     b.inv_d_far[a][j] = b.inv_d[a][j] * traverse_detail::kFarRound;
+    const float scale = std::fabs(b.inv_d[a][j]) * (extent[a] + std::fabs(ray.o[a]));
+    const float scaled = scale * traverse_detail::kSlabMargin;  // x86 max: the floor unless scaled is greater
+    const float margin = scaled > traverse_detail::kMinSlabMargin ? scaled : traverse_detail::kMinSlabMargin;
+    b.org_near[a][j] = ray.o[a] * b.inv_d[a][j] + margin;
+    b.org_far[a][j] = ray.o[a] * b.inv_d[a][j] - margin;
+    fma = fma && traverse_detail::fma_slab_axis(b.inv_d[a][j], scale);
     const bool neg = b.inv_d[a][j] < 0;  // as SlabRay: -0 gives -inf, i.e. "negative"
     b.near_off[a][j] = traverse_detail::bound_offset<N>(a, neg);
     b.far_off[a][j] = traverse_detail::bound_offset<N>(a, !neg);
@@ -97,11 +113,12 @@ HWY_INLINE void SetupRay(const Ray& ray, RayBlock& b, size_t j) {
   }
   b.t_max[j] = ray.t_max;
   b.valid |= uint32_t(traverse_detail::is_valid_ray(ray)) << j;
+  b.fma_slabs |= uint32_t(fma) << j;
 }
 
 // Entries [0, n) of `b` from rays [first, first + n) of `rays` (n <= kRayBlock), kRayBlock / lanes vectors.
 template <int N>
-HWY_INLINE void SetupRays(const RaySoA& rays, size_t first, size_t n, RayBlock& b) {
+HWY_INLINE void SetupRays(const RaySoA& rays, size_t first, size_t n, const float extent[3], RayBlock& b) {
   const hn::CappedTag<float, kRayBlock> d;
   const hn::RebindToSigned<decltype(d)> di;
   const hn::RebindToUnsigned<decltype(d)> du;
@@ -111,7 +128,9 @@ HWY_INLINE void SetupRays(const RaySoA& rays, size_t first, size_t n, RayBlock& 
   traverse_detail::ray_sources(rays, first, n, tail, src);  // a short last block: padding rays are invalid
   const auto zero = hn::Zero(d);
   const auto one = hn::Set(d, 1.0f);
-  uint32_t valid = 0;
+  const auto abs_limit = hn::Set(d, traverse_detail::kMaxSlabScale);
+  const auto inv_floor = hn::Set(d, traverse_detail::kMinInvDir);
+  uint32_t valid = 0, fma_slabs = 0;
   for (size_t g = 0; g < n; g += L) {
     const hn::Vec<decltype(d)> o[3] = {hn::LoadU(d, src[0] + g), hn::LoadU(d, src[1] + g), hn::LoadU(d, src[2] + g)};
     const hn::Vec<decltype(d)> dir[3] = {hn::LoadU(d, src[3] + g), hn::LoadU(d, src[4] + g),
@@ -119,11 +138,20 @@ HWY_INLINE void SetupRays(const RaySoA& rays, size_t first, size_t n, RayBlock& 
     const auto t_max = hn::LoadU(d, src[6] + g);
     valid |= MaskBits(d, ValidRayLanes(d, o[0], o[1], o[2], dir[0], dir[1], dir[2], t_max)) << g;
     const auto w = SetupWatertight(d, dir[0], dir[1], dir[2]);
+    auto fma = hn::FirstN(d, L);
     for (int a = 0; a < 3; ++a) {
       hn::Store(o[a], d, b.o[a] + g);
       const auto inv = hn::Div(one, dir[a]);
       hn::Store(inv, d, b.inv_d[a] + g);
       hn::Store(hn::Mul(inv, hn::Set(d, traverse_detail::kFarRound)), d, b.inv_d_far[a] + g);
+      const auto scale = hn::Mul(hn::Abs(inv), hn::Add(hn::Set(d, extent[a]), hn::Abs(o[a])));
+      // Max with the floor second: a NaN scale (then not an FMA ray) gives the floor, as SetupRay does.
+      const auto margin =
+          hn::Max(hn::Mul(scale, hn::Set(d, traverse_detail::kSlabMargin)), hn::Set(d, traverse_detail::kMinSlabMargin));
+      const auto org_inv = hn::Mul(o[a], inv);
+      hn::Store(hn::Add(org_inv, margin), d, b.org_near[a] + g);
+      hn::Store(hn::Sub(org_inv, margin), d, b.org_far[a] + g);
+      fma = hn::And(fma, hn::And(hn::Lt(scale, abs_limit), hn::Gt(hn::Abs(inv), inv_floor)));
       const auto neg = hn::RebindMask(du, hn::Lt(inv, zero));
       const auto lo = hn::Set(du, traverse_detail::bound_offset<N>(a, false));
       const auto hi = hn::Set(du, traverse_detail::bound_offset<N>(a, true));
@@ -136,8 +164,10 @@ HWY_INLINE void SetupRays(const RaySoA& rays, size_t first, size_t n, RayBlock& 
       hn::Store(w.s[a], d, b.s[a] + g);
     }
     hn::Store(t_max, d, b.t_max + g);
+    fma_slabs |= MaskBits(d, fma) << g;
   }
   b.valid = valid & ((1u << n) - 1);  // n <= 16
+  b.fma_slabs = fma_slabs & ((1u << n) - 1);
 }
 
 }  // namespace

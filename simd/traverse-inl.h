@@ -24,6 +24,42 @@ constexpr int kMaxWideDepth = 64;
 // grazing a box never miss it through rounding.
 constexpr float kFarRound = 1 + 2 * 3 * 0x1p-24f;
 
+// The FMA slab test. A slab distance (b - o) / d computed as one fused multiply-add, fma(b, inv_d, -o * inv_d),
+// takes two instructions fewer per node than (b - o) * inv_d, but o * inv_d is rounded: its error is relative to
+// |o|, not to the distance, so the result is not bounded by a factor as SlabRay's is. The test stays conservative
+// with a per-ray margin folded into the constant (o * inv_d + margin for entry planes, - margin for exit planes):
+// with u = 2^-24, |b| <= extent (the tree's plane_extent) and r = inv_d, the four roundings (1 / d, o * r, the
+// margin's addition, the fma) are off by at most u |r| (2.0002 |b| + 4.0002 |o|) + 2.0001 u margin in all, and
+// margin = 8 u |r| (extent + |o|) covers that with a factor of two to spare. Unfused targets (SSE4, scalar) round
+// b * r once more, u |r| |b|, still covered. kMinSlabMargin covers the absolute error of subnormal products.
+// The cost: boxes a margin's width (a few 1e-7 of the scene's coordinates) beyond a ray are not culled.
+constexpr float kSlabMargin = 8 * 0x1p-24f;
+constexpr float kMinSlabMargin = 0x1p-120f;
+// An axis takes the FMA test only where every product stays far from overflow (|r| (extent + |o|) < 2^100) and
+// from 0 (|r| > 2^-100, so the empty slots' infinite planes give infinities, never 0 * inf): a zero or tiny
+// direction component (axis-parallel rays) keeps the exact subtract-and-multiply test, whose NaN for a ray in a
+// slab plane leaves that slab unconstrained.
+constexpr float kMaxSlabScale = 0x1p100f;
+constexpr float kMinInvDir = 0x1p-100f;
+inline bool fma_slab_axis(float inv_d, float scale) {
+  return scale < kMaxSlabScale && std::fabs(inv_d) > kMinInvDir;  // false for NaN
+}
+
+// Per axis, the largest |coordinate| of any child-bound plane in the tree: the root's children bound the rest.
+template <int N>
+inline void plane_extent(const WideBvh<N>& bvh, float extent[3]) {
+  extent[0] = extent[1] = extent[2] = 0;
+  if (bvh.nodes.empty()) return;
+  const WideNode<N>& root = bvh.nodes[0];
+  const float* lo[3] = {root.lo_x, root.lo_y, root.lo_z};
+  const float* hi[3] = {root.hi_x, root.hi_y, root.hi_z};
+  for (int i = 0; i < N; ++i) {
+    if (root.child[i] == kEmptyChild) continue;
+    for (int a = 0; a < 3; ++a)
+      extent[a] = std::fmax(extent[a], std::fmax(std::fabs(lo[a][i]), std::fabs(hi[a][i])));
+  }
+}
+
 // False for rays no triangle can be hit by, which every kernel reports as a miss: non-finite
 // origin or direction components, a zero direction, or t_max NaN or <= 0.
 inline bool is_valid_ray(const Ray& ray) {
@@ -135,7 +171,7 @@ HWY_INLINE WatertightSetup<D> SetupWatertight(D d, V dx, V dy, V dz) {
 template <class D>
 struct WatertightLanes {
   hn::Mask<D> hit;   // inside and 0 < t < t_max by the range test; ResolveHits divides and checks again
-  hn::Mask<D> zero;  // an edge function is exactly 0: the caller re-tests these lanes with the scalar test
+  hn::Mask<D> zero;  // an edge function is exactly 0 and decides: the caller re-tests these with the scalar test
   hn::Vec<D> det, t_scaled, v, w;  // t = t_scaled / det, b1 = v / det, b2 = w / det
   hn::Vec<D> t, b1, b2;            // set by ResolveHits
 };
@@ -163,19 +199,20 @@ HWY_INLINE WatertightLanes<D> WatertightTest(D d, V akx, V aky, V akz, V bkx, V 
   const V v = Sub(Mul(ax, cy), Mul(ay, cx));
   const V w = Sub(Mul(bx, ay), Mul(by, ax));
   const V zero = hn::Zero(d);
-  const auto zero_edge = hn::Or(hn::Or(hn::Eq(u, zero), hn::Eq(v, zero)), hn::Eq(w, zero));
   const V det = Add(Add(u, v), w);
   WatertightLanes<D> r;
-  r.zero = hn::And(candidates, zero_edge);
   r.det = det;
   r.v = v;
   r.w = w;
-  // Inside unless the edge functions have mixed signs: all >= 0 or all <= 0, as the scalar test's "not (any < 0
-  // and any > 0)" for every non-NaN lane; a NaN edge function makes det and t_scaled NaN, which the range test
-  // below rejects (whatever Ne does with NaN on the target).
-  const auto same_signs = hn::Or(hn::Ge(hn::Min(u, hn::Min(v, w)), zero), hn::Le(hn::Max(u, hn::Max(v, w)), zero));
-  auto hit = hn::And(same_signs, hn::Ne(det, zero));
-  hit = hn::And(hn::AndNot(zero_edge, candidates), hit);
+  // Inside: all three edge functions > 0 or all < 0; then det != 0 too (a sum of floats of one sign is never 0).
+  // A float 0 may be a rounded non-zero, whose sign the scalar test finds in double: its zero lanes are those
+  // where one edge function is 0 and the others do not already have mixed signs (those miss in double too: a
+  // non-zero float edge function has the exact value's sign, as rounding is monotonic), i.e. min or max is 0.
+  // A NaN edge function may hide from Min / Max (x86 returns the second operand), but it makes det and t_scaled
+  // NaN, which the range test below rejects, and a zero lane re-tested by the scalar test rejects it there.
+  const V lo = hn::Min(u, hn::Min(v, w)), hi = hn::Max(u, hn::Max(v, w));
+  auto hit = hn::And(candidates, hn::Or(hn::Gt(lo, zero), hn::Lt(hi, zero)));
+  r.zero = hn::And(candidates, hn::Or(hn::Eq(lo, zero), hn::Eq(hi, zero)));
   if (kSkipMisses && hn::AllFalse(d, hit)) {
     r.hit = hit;
     r.t_scaled = zero;

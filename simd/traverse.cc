@@ -2,8 +2,8 @@
 // points. The kernel itself is in traverse_single-inl.h, shared with the packet kernels' single-ray fallback.
 
 // No contraction into FMA anywhere in this file: the edge functions must round like the scalar test's (see
-// geometry/triangle.cc); the slab test then also rounds exactly like SlabRay. Before every include, so that all
-// inlined Highway functions carry the same option.
+// geometry/triangle.cc); the exact slab test then also rounds exactly like SlabRay (the FMA slab test fuses
+// explicitly). Before every include, so that all inlined Highway functions carry the same option.
 #include "core/no_fp_contract.h"  // before every other include
 
 #include "traverse.h"
@@ -33,9 +33,11 @@ template <int N>
 void ClosestSingle(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                    Hit* hits) {
   RayBlock block;
+  float extent[3];
+  traverse_detail::plane_extent(bvh, extent);
   for (size_t first = 0; first < count; first += kRayBlock) {
     const size_t n = std::min(kRayBlock, count - first);
-    SetupRays<N>(rays, first, n, block);
+    SetupRays<N>(rays, first, n, extent, block);
     for (size_t j = 0; j < n; ++j) {
       Hit& hit = hits[first + j];
       hit = Hit{};
@@ -49,9 +51,11 @@ template <int N>
 void AnySingle(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                uint8_t* occluded) {
   RayBlock block;
+  float extent[3];
+  traverse_detail::plane_extent(bvh, extent);
   for (size_t first = 0; first < count; first += kRayBlock) {
     const size_t n = std::min(kRayBlock, count - first);
-    SetupRays<N>(rays, first, n, block);
+    SetupRays<N>(rays, first, n, extent, block);
     for (size_t j = 0; j < n; ++j) {
       const bool traced = !bvh.nodes.empty() && ((block.valid >> j) & 1) != 0;
       occluded[first + j] =
@@ -63,17 +67,18 @@ void AnySingle(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& 
 }  // namespace
 
 // Block set-up against one-ray set-up, ray by ray (see traverse.h).
-size_t CountRaySetupMismatches(const RaySoA& rays, size_t count) {
+size_t CountRaySetupMismatches(const RaySoA& rays, size_t count, const float* extent) {
   size_t mismatches = 0;
   RayBlock vec, one;
   for (size_t first = 0; first < count; first += kRayBlock) {
     const size_t n = std::min(kRayBlock, count - first);
-    SetupRays<8>(rays, first, n, vec);
-    one.valid = 0;
-    for (size_t j = 0; j < n; ++j) SetupRay<8>(ray_at(rays, first + j), one, j);
+    SetupRays<8>(rays, first, n, extent, vec);
+    one.valid = one.fma_slabs = 0;
+    for (size_t j = 0; j < n; ++j) SetupRay<8>(ray_at(rays, first + j), extent, one, j);
     for (size_t j = 0; j < n; ++j) {
       const bool valid = (vec.valid >> j) & 1;
-      bool same = valid == (((one.valid >> j) & 1) != 0);
+      const bool fma = (vec.fma_slabs >> j) & 1;
+      bool same = valid == (((one.valid >> j) & 1) != 0) && fma == (((one.fma_slabs >> j) & 1) != 0);
       const auto same_bits = [&](const auto& a, const auto& b) { return std::memcmp(&a, &b, sizeof(a)) == 0; };
       for (int a = 0; valid && same && a < 3; ++a) {
         same = same_bits(vec.o[a][j], one.o[a][j]) && same_bits(vec.inv_d[a][j], one.inv_d[a][j]) &&
@@ -81,6 +86,8 @@ size_t CountRaySetupMismatches(const RaySoA& rays, size_t count) {
                vec.far_off[a][j] == one.far_off[a][j] && vec.k[a][j] == one.k[a][j] &&
                same_bits(vec.ok[a][j], one.ok[a][j]) && same_bits(vec.s[a][j], one.s[a][j]);
       }
+      for (int a = 0; valid && fma && same && a < 3; ++a)
+        same = same_bits(vec.org_near[a][j], one.org_near[a][j]) && same_bits(vec.org_far[a][j], one.org_far[a][j]);
       if (valid && same) same = same_bits(vec.t_max[j], one.t_max[j]);
       mismatches += same ? 0 : 1;
     }
@@ -134,8 +141,8 @@ void intersect_any(const WideBvh<8>& bvh, const TriangleLeaves& tris, const RayS
 }
 const char* traversal_target_name() { return hwy::TargetName(HWY_DYNAMIC_DISPATCH(TraversalTarget)()); }
 
-size_t traverse_detail::count_ray_setup_mismatches(const RaySoA& rays, size_t count) {
-  return HWY_DYNAMIC_DISPATCH(CountRaySetupMismatches)(rays, count);
+size_t traverse_detail::count_ray_setup_mismatches(const RaySoA& rays, size_t count, const float extent[3]) {
+  return HWY_DYNAMIC_DISPATCH(CountRaySetupMismatches)(rays, count, extent);
 }
 
 }  // namespace torte

@@ -57,9 +57,10 @@ const char* traversal_target_name();
 
 namespace traverse_detail {
 // For tests: how many of rays [0, count) get different per-ray constants (validity, or any bit of a valid ray's
-// origin, inverse direction, plane offsets, watertight axes, shear) from the single-ray kernel's block set-up
-// (vector ops across 16 rays, simd/single_ray-inl.h) than from the one-ray scalar set-up. 0 when consistent.
-size_t count_ray_setup_mismatches(const RaySoA& rays, size_t count);
+// origin, inverse direction, FMA slab choice and constants, plane offsets, watertight axes, shear) from the
+// single-ray kernel's block set-up (vector ops across 16 rays, simd/single_ray-inl.h) than from the one-ray scalar
+// set-up, for a tree whose plane_extent is `extent`. 0 when consistent.
+size_t count_ray_setup_mismatches(const RaySoA& rays, size_t count, const float extent[3]);
 }  // namespace traverse_detail
 
 }  // namespace torte

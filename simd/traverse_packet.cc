@@ -321,7 +321,9 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
       // Few rays left here: one at a time is cheaper than a mostly empty packet.
       if (!block_ready) {
         static_assert(P <= kRayBlock);
-        SetupRays<N>(RaySoA{p.ox, p.oy, p.oz, p.dx, p.dy, p.dz, p.t_max}, 0, P, block);
+        float extent[3];
+        traverse_detail::plane_extent(bvh, extent);
+        SetupRays<N>(RaySoA{p.ox, p.oy, p.oz, p.dx, p.dy, p.dz, p.t_max}, 0, P, extent, block);
         block_ready = true;
       }
       for (uint32_t b = lanes; b != 0; b &= b - 1) {

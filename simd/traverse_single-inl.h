@@ -2,8 +2,10 @@
 // by traverse_packet.cc for subtrees where too few rays of a packet stay active. Include it after
 // traverse-inl.h inside a file compiled with foreach_target and without FMA contraction (see traverse.cc).
 // Nodes: lanes = children. One slab test per axis covers all N children (CappedTag<float, N>; targets narrower
-// than N loop over lane groups); near/far planes are picked per ray by the direction's signs, so the node test is
-// SlabRay::hits of accel/bvh2.h with the far rounding folded into the inverse direction (as conservative). Hit
+// than N loop over lane groups); near/far planes are picked per ray by the direction's signs. The slab distance
+// of a plane is one fused multiply-add with a per-ray margin that keeps the test conservative (kSlabMargin in
+// traverse-inl.h: 1 to 5 % faster on diffuse rays, 2026-11-22); rays with a zero or tiny direction component take
+// SlabRay::hits of accel/bvh2.h instead, with the far rounding folded into the inverse direction. Hit
 // children are sorted far to near and pushed, and the nearest is visited next; popped entries starting beyond the
 // closest hit so far are skipped. The second nearest (the likeliest next pop) is prefetched when pushed: about
 // +4 % on diffuse rays (2026-11-22; prefetching every pushed child, or the next stack entry at each pop, measured
@@ -40,25 +42,39 @@ using traverse_detail::kMaxWideDepth;
 using traverse_detail::node_floats;
 
 // Slab test of all N children of `node`. Returns the hit children as bits and their entry distances in t_near.
-template <int N>
+// kFma: one fused multiply-add per plane with the margins of the ray's constants (traverse_detail::kSlabMargin);
+// otherwise subtract, then multiply, as SlabRay (rays with a zero or tiny direction component).
+template <int N, bool kFma>
 HWY_INLINE uint32_t IntersectChildren(const WideNode<N>& node, const SingleRay& r, float t_max, float* t_near) {
   const hn::CappedTag<float, N> d;
   const size_t L = hn::Lanes(d);
   const float* nf = node_floats(node);
-  const auto ox = hn::Set(d, r.o(0)), oy = hn::Set(d, r.o(1)), oz = hn::Set(d, r.o(2));
   const auto ix = hn::Set(d, r.inv_d(0)), iy = hn::Set(d, r.inv_d(1)), iz = hn::Set(d, r.inv_d(2));
-  const auto fx = hn::Set(d, r.inv_d_far(0)), fy = hn::Set(d, r.inv_d_far(1)), fz = hn::Set(d, r.inv_d_far(2));
   uint32_t bits = 0;
   for (size_t g = 0; g < size_t(N); g += L) {
-    const auto tx0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off(0) + g), ox), ix);
-    const auto ty0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off(1) + g), oy), iy);
-    const auto tz0 = hn::Mul(hn::Sub(hn::Load(d, nf + r.near_off(2) + g), oz), iz);
-    const auto tx1 = hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off(0) + g), ox), fx);
-    const auto ty1 = hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off(1) + g), oy), fy);
-    const auto tz1 = hn::Mul(hn::Sub(hn::Load(d, nf + r.far_off(2) + g), oz), fz);
-    // A ray lying in a slab plane gives 0 * inf = NaN there; that slab must not constrain the interval (as in
-    // SlabRay). Max(x, acc) / Min(x, acc) return acc when x is NaN on every target (x86 min/max return their
-    // second operand, HWY_SCALAR the non-NaN one), so keep the accumulator second.
+    const auto bx0 = hn::Load(d, nf + r.near_off(0) + g), by0 = hn::Load(d, nf + r.near_off(1) + g);
+    const auto bz0 = hn::Load(d, nf + r.near_off(2) + g), bx1 = hn::Load(d, nf + r.far_off(0) + g);
+    const auto by1 = hn::Load(d, nf + r.far_off(1) + g), bz1 = hn::Load(d, nf + r.far_off(2) + g);
+    hn::Vec<decltype(d)> tx0, ty0, tz0, tx1, ty1, tz1;
+    if constexpr (kFma) {
+      tx0 = hn::MulSub(bx0, ix, hn::Set(d, r.org_near(0)));
+      ty0 = hn::MulSub(by0, iy, hn::Set(d, r.org_near(1)));
+      tz0 = hn::MulSub(bz0, iz, hn::Set(d, r.org_near(2)));
+      tx1 = hn::MulSub(bx1, ix, hn::Set(d, r.org_far(0)));
+      ty1 = hn::MulSub(by1, iy, hn::Set(d, r.org_far(1)));
+      tz1 = hn::MulSub(bz1, iz, hn::Set(d, r.org_far(2)));
+    } else {
+      const auto ox = hn::Set(d, r.o(0)), oy = hn::Set(d, r.o(1)), oz = hn::Set(d, r.o(2));
+      tx0 = hn::Mul(hn::Sub(bx0, ox), ix);
+      ty0 = hn::Mul(hn::Sub(by0, oy), iy);
+      tz0 = hn::Mul(hn::Sub(bz0, oz), iz);
+      tx1 = hn::Mul(hn::Sub(bx1, ox), hn::Set(d, r.inv_d_far(0)));
+      ty1 = hn::Mul(hn::Sub(by1, oy), hn::Set(d, r.inv_d_far(1)));
+      tz1 = hn::Mul(hn::Sub(bz1, oz), hn::Set(d, r.inv_d_far(2)));
+    }
+    // A ray lying in a slab plane gives 0 * inf = NaN there (exact test only); that slab must not constrain the
+    // interval (as in SlabRay). Max(x, acc) / Min(x, acc) return acc when x is NaN on every target (x86 min/max
+    // return their second operand, HWY_SCALAR the non-NaN one), so keep the accumulator second.
     const auto t0 = hn::Max(tz0, hn::Max(ty0, hn::Max(tx0, hn::Zero(d))));
     const auto t1 = hn::Min(tz1, hn::Min(ty1, hn::Min(tx1, hn::Set(d, t_max))));
     hn::StoreU(t0, d, t_near + g);
@@ -168,8 +184,8 @@ HWY_INLINE void Prefetch(const WideBvh<N>& bvh, const SingleRay& r, uint32_t ref
 // Closest hit (kAny = false: fills *hit, returns whether anything was hit) or any hit (returns occlusion), in the
 // subtree (ref, count): the whole tree by default (the root is node 0), or a packet entry's subtree when a packet
 // kernel hands its few remaining rays over to single-ray traversal.
-template <int N, bool kAny>
-HWY_INLINE bool TraceRay(const WideBvh<N>& bvh, const TriangleLeaves& tris, const SingleRay& r, float t_max,
+template <int N, bool kAny, bool kFma>
+HWY_INLINE bool TraceRayWith(const WideBvh<N>& bvh, const TriangleLeaves& tris, const SingleRay& r, float t_max,
                          Hit* hit, uint32_t ref = 0, uint32_t count = 0) {
   struct Entry {
     uint32_t ref, count;
@@ -188,7 +204,7 @@ HWY_INLINE bool TraceRay(const WideBvh<N>& bvh, const TriangleLeaves& tris, cons
     } else {
       const WideNode<N>& node = nodes[ref];
       alignas(64) float t_near[N];
-      uint32_t bits = IntersectChildren(node, r, t_max, t_near);
+      uint32_t bits = IntersectChildren<N, kFma>(node, r, t_max, t_near);
       if (bits != 0) {
         const uint32_t first = uint32_t(__builtin_ctz(bits));
         bits &= bits - 1;
@@ -255,6 +271,14 @@ HWY_INLINE bool TraceRay(const WideBvh<N>& bvh, const TriangleLeaves& tris, cons
       }
     }
   }
+}
+
+// TraceRayWith with the ray's slab test: the FMA test unless a direction component is zero or tiny.
+template <int N, bool kAny>
+HWY_INLINE bool TraceRay(const WideBvh<N>& bvh, const TriangleLeaves& tris, const SingleRay& r, float t_max,
+                         Hit* hit, uint32_t ref = 0, uint32_t count = 0) {
+  if (HWY_LIKELY(r.fma_slabs())) return TraceRayWith<N, kAny, true>(bvh, tris, r, t_max, hit, ref, count);
+  return TraceRayWith<N, kAny, false>(bvh, tris, r, t_max, hit, ref, count);
 }
 
 }  // namespace

@@ -67,9 +67,43 @@ TEST_CASE("the single-ray kernel's block set-up equals the one-ray scalar set-up
   rays.add({0, 0, 0}, {kInfinity, 0, 1});
   rays.add({0, 0, 0}, {0, 0, 0});
   REQUIRE(rays.size() % 16 != 0);
+  // Trees around and away from the origin, and one flat in z (extent 0 there: the FMA test's margin floor).
+  const float extents[3][3] = {{50, 120, 3}, {1e4f, 2e4f, 3e4f}, {10, 10, 0}};
   for_each_target([&](const std::string&, bool) {
-    CHECK(traverse_detail::count_ray_setup_mismatches(rays.soa(), rays.size()) == 0);
-    CHECK(traverse_detail::count_ray_setup_mismatches(rays.soa(5), 11) == 0);  // one short block
+    for (const auto& extent : extents) {
+      CHECK(traverse_detail::count_ray_setup_mismatches(rays.soa(), rays.size(), extent) == 0);
+      CHECK(traverse_detail::count_ray_setup_mismatches(rays.soa(5), 11, extent) == 0);  // one short block
+    }
+  });
+}
+
+TEST_CASE("rays grazing box corners far from the origin find every hit the brute force finds", "[traverse]") {
+  // The FMA slab test rounds o * (1 / d), an error relative to |o| rather than to the distance: 2e-3 units at
+  // 3e4, far more than these triangles' size. Its margin (traverse_detail::kSlabMargin) must keep it
+  // conservative. Small triangles around (2e4, -3e4, 1e4); every ray aims exactly at a vertex, the corner of a
+  // leaf box through it, from a few units away.
+  const Vec3f center(2e4f, -3e4f, 1e4f);
+  Pcg32 rng(41);
+  Soup soup;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3f c = center + random_vec(rng) * 4.0f;
+    for (int k = 0; k < 3; ++k) soup.push_back(c + random_direction(rng) * 0.03f);
+  }
+  Rays rays;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3f target = soup[rng.next_u32() % soup.size()];
+    const Vec3f o = target + random_direction(rng) * (1.0f + 6.0f * rng.next_float());
+    rays.add(o, target - o);
+  }
+  const Expected e = expect_brute(soup, rays);
+  size_t hits = 0;
+  for (const Hit& h : e.hits) hits += h.prim != kNoHit;
+  REQUIRE(hits > rays.size() / 4);
+  const Tree<4> t4 = build<4>(soup);
+  const Tree<8> t8 = build<8>(soup);
+  for_each_target([&](const std::string&, bool) {
+    check_all_modes(t4, soup, rays, e, rays.size(), rays.size());
+    check_all_modes(t8, soup, rays, e, rays.size(), rays.size());
   });
 }
 
