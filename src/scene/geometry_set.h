@@ -2,9 +2,9 @@
 // acceleration structures. The scene's own (top-level) shapes form one set; every instanced group is another, shared by all
 // its instances (see scene/scene.h). Meshes and quadrics are owned by the caller and must outlive the set.
 //
-// Memory (the dragon, one mesh with vertex normals): wide nodes 9.2 B/tri, leaf triangles 36.1 (with the leaf-start
+// Memory (the dragon, one mesh with vertex normals): wide nodes 6.8 B/tri, leaf triangles 36.1 (with the leaf-start
 // bitmap), mesh indices 12 and normals 6 once the scene releases the mesh positions (the leaves hold them):
-// 63.2 B/tri, checked by test_geometry_set.cc. Sets of several meshes add 4 B/tri (each triangle's place in
+// 61.0 B/tri, checked by test_geometry_set.cc. Sets of several meshes add 4 B/tri (each triangle's place in
 // the meshes concatenated).
 #pragma once
 #include <algorithm>
