@@ -32,16 +32,7 @@ TEST_CASE("directions whose largest components tie choose the scalar test's axes
     const Vec3f o = Vec3f(rng.next_float(), rng.next_float(), rng.next_float()) * 6 - Vec3f(3, 3, 3);
     for (const Vec3f& d : dirs) rays.add(o - d * 2, d);
   }
-  const Expected e = expect_brute(sphere, rays);
-  size_t hits = 0;
-  for (const Hit& h : e.hits) hits += h.prim != kNoHit;
-  REQUIRE(hits > rays.size() / 10);
-  const Tree<4> t4 = build<4>(sphere);
-  const Tree<8> t8 = build<8>(sphere);
-  for_each_target([&](const std::string&, bool) {
-    check_all_modes(t4, sphere, rays, e, rays.size(), rays.size());
-    check_all_modes(t8, sphere, rays, e, rays.size(), rays.size());
-  });
+  check_against_brute(sphere, rays, 10);
 }
 
 TEST_CASE("the single-ray kernel's block set-up equals the one-ray scalar set-up bit for bit", "[traverse]") {
@@ -95,16 +86,7 @@ TEST_CASE("rays grazing box corners far from the origin find every hit the brute
     const Vec3f o = target + random_direction(rng) * (1.0f + 6.0f * rng.next_float());
     rays.add(o, target - o);
   }
-  const Expected e = expect_brute(soup, rays);
-  size_t hits = 0;
-  for (const Hit& h : e.hits) hits += h.prim != kNoHit;
-  REQUIRE(hits > rays.size() / 4);
-  const Tree<4> t4 = build<4>(soup);
-  const Tree<8> t8 = build<8>(soup);
-  for_each_target([&](const std::string&, bool) {
-    check_all_modes(t4, soup, rays, e, rays.size(), rays.size());
-    check_all_modes(t8, soup, rays, e, rays.size(), rays.size());
-  });
+  check_against_brute(soup, rays, 4);
 }
 
 TEST_CASE("rays starting on a surface behave as the scalar test does", "[traverse]") {
