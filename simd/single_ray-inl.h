@@ -146,8 +146,8 @@ HWY_INLINE void SetupRays(const RaySoA& rays, size_t first, size_t n, const floa
       hn::Store(hn::Mul(inv, hn::Set(d, traverse_detail::kFarRound)), d, b.inv_d_far[a] + g);
       const auto scale = hn::Mul(hn::Abs(inv), hn::Add(hn::Set(d, extent[a]), hn::Abs(o[a])));
       // Max with the floor second: a NaN scale (then not an FMA ray) gives the floor, as SetupRay does.
-      const auto margin =
-          hn::Max(hn::Mul(scale, hn::Set(d, traverse_detail::kSlabMargin)), hn::Set(d, traverse_detail::kMinSlabMargin));
+      const auto margin = hn::Max(hn::Mul(scale, hn::Set(d, traverse_detail::kSlabMargin)),
+                                  hn::Set(d, traverse_detail::kMinSlabMargin));
       const auto org_inv = hn::Mul(o[a], inv);
       hn::Store(hn::Add(org_inv, margin), d, b.org_near[a] + g);
       hn::Store(hn::Sub(org_inv, margin), d, b.org_far[a] + g);
