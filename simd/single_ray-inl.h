@@ -20,7 +20,6 @@
 
 #include <hwy/highway.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -40,7 +39,7 @@ struct RayBlock {
   alignas(64) float o[3][kRayBlock];          // origin
   alignas(64) float inv_d[3][kRayBlock];      // 1 / direction (-0 gives -inf)
   alignas(64) float inv_d_far[3][kRayBlock];  // exact slab test: inv_d * kFarRound, the far rounding folded in
-  alignas(64) float org_near[3][kRayBlock];   // FMA slab test: o * inv_d + margin (traverse_detail::SlabMargin)
+  alignas(64) float org_near[3][kRayBlock];   // FMA slab test: o * inv_d + margin (traverse_detail::kSlabMargin)
   alignas(64) float org_far[3][kRayBlock];    // ... and o * inv_d - margin
   alignas(64) uint32_t near_off[3][kRayBlock];  // per axis, node_floats offset of the entry plane array
   alignas(64) uint32_t far_off[3][kRayBlock];   // ... and of the exit plane array
