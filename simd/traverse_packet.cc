@@ -300,8 +300,10 @@ struct PacketStats {
 };
 
 // `stats`: the closest-hit packet's leaf occupancy and mode (see PacketStats); any hit takes none (nullptr).
+// `extent`: the tree's plane_extent, for the single-ray hand-over's constants.
 template <int N, size_t P, bool kAny>
-void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p, PacketStats* stats) {
+void TracePacket(const WideBvh<N>& bvh, const float extent[3], const TriangleLeaves& tris, Packet<P>& p,
+                 PacketStats* stats) {
   struct Entry {
     uint32_t ref, count, lanes;
     float t_near;
@@ -321,8 +323,6 @@ void TracePacket(const WideBvh<N>& bvh, const TriangleLeaves& tris, Packet<P>& p
       // Few rays left here: one at a time is cheaper than a mostly empty packet.
       if (!block_ready) {
         static_assert(P <= kRayBlock);
-        float extent[3];
-        traverse_detail::plane_extent(bvh, extent);
         SetupRays<N>(RaySoA{p.ox, p.oy, p.oz, p.dx, p.dy, p.dz, p.t_max}, 0, P, extent, block);
         block_ready = true;
       }
@@ -443,13 +443,15 @@ template <int N, size_t P>
 void ClosestPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                     Hit* hits) {
   Packet<P> p;
+  float extent[3];  // for the single-ray hand-over's constants
+  traverse_detail::plane_extent(bvh, extent);
   float occupancy = 1.0f;  // running mean leaf occupancy of the packets started in interval mode
   for (size_t begin = 0; begin < count; begin += P) {
     const size_t n = count - begin < P ? count - begin : P;
     SetupPacket<N, true>(p, rays, begin, n);
     PacketStats stats;
     stats.per_lane = (begin / P) % kIntervalProbeEvery != 0 && occupancy < kSparseBatchOccupancy;
-    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, false>(bvh, tris, p, &stats);
+    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, false>(bvh, extent, tris, p, &stats);
     if (!stats.per_lane && stats.leaf_visits > 0)
       occupancy = 0.9f * occupancy +
                   0.1f * float(stats.leaf_lanes) / (float(stats.leaf_visits) * float(std::popcount(p.valid)));
@@ -462,10 +464,12 @@ template <int N, size_t P>
 void AnyPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                 uint8_t* occluded) {
   Packet<P> p;
+  float extent[3];  // for the single-ray hand-over's constants
+  traverse_detail::plane_extent(bvh, extent);
   for (size_t begin = 0; begin < count; begin += P) {
     const size_t n = count - begin < P ? count - begin : P;
     SetupPacket<N, true>(p, rays, begin, n);
-    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, true>(bvh, tris, p, nullptr);
+    if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, true>(bvh, extent, tris, p, nullptr);
     // Occluded lanes were retired with t_max = -inf; invalid ones never were valid.
     for (size_t i = 0; i < n; ++i) occluded[begin + i] = ((p.valid >> i) & 1) && !(p.t_max[i] > 0) ? 1 : 0;
   }
