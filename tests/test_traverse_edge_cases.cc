@@ -89,6 +89,32 @@ TEST_CASE("rays grazing box corners far from the origin find every hit the brute
   check_against_brute(soup, rays, 4);
 }
 
+TEST_CASE("leaves of more triangles than a vector holds give the brute force's hits", "[traverse]") {
+  // With leaves of up to 16 (SAH leaf blocks of 16), the single-ray kernel tests a leaf in groups of 8 lanes (4
+  // on SSE4, 1 on the scalar target); the groups after the first run out of line on 8-lane targets. Overlapping
+  // triangles make the closest hit depend on groups after the first.
+  const Soup soup = random_soup(3000, 17);
+  const BvhBuildOptions big_leaves{.max_leaf_size = 16, .leaf_block_size = 16};
+  size_t big = 0, leaves = 0;
+  const Tree<8> t = build<8>(soup, big_leaves);
+  for (const WideNode<8>& n : t.bvh.nodes)
+    for (int i = 0; i < 8; ++i) {
+      if (!is_leaf_child(n.child[i])) continue;
+      ++leaves;
+      big += n.leaf_count[i] > 8;
+    }
+  INFO(big << " of " << leaves << " leaves hold more than 8 triangles");
+  REQUIRE(big > leaves / 2);
+  Pcg32 rng(23);
+  Rays rays;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3f target = soup[rng.next_u32() % soup.size()] + random_direction(rng) * 0.3f;
+    const Vec3f o = random_vec(rng) * 30 - Vec3f(15, 15, 15);
+    rays.add(o, target - o);
+  }
+  check_against_brute(soup, rays, 2, big_leaves);
+}
+
 TEST_CASE("rays starting on a surface behave as the scalar test does", "[traverse]") {
   // Documented behaviour (traverse.h): hits need t > 0 as computed by the scalar test. An origin exactly on a
   // vertex gives t = 0 on the triangles around it (no self-hit); an origin interpolated inside a triangle may

@@ -72,12 +72,11 @@ struct Tree {
 };
 
 template <int N>
-Tree<N> build(const Soup& s) {
+Tree<N> build(const Soup& s, BvhBuildOptions options = {}) {
   std::vector<Bounds3f> b(s.size() / 3);
   for (size_t i = 0; i < b.size(); ++i)
     for (int k = 0; k < 3; ++k) b[i].extend(s[3 * i + k]);
   Tree<N> t;
-  BvhBuildOptions options;
   options.parallel = false;
   t.bvh = build_wide_bvh<N>(b, options);
   t.leaves = make_triangle_leaves(t.bvh, s, false);
@@ -241,13 +240,14 @@ void check_all_modes(const Tree<N>& t, const Soup& s, const Rays& r, const Expec
 
 // Every ray of `rays` traced through trees of width 4 and 8 over `soup`, in every mode on every target, against
 // brute force; more than `min_hits_divisor`-th of the rays must hit (the comparison must be about hits).
-inline void check_against_brute(const Soup& soup, const Rays& rays, size_t min_hits_divisor) {
+inline void check_against_brute(const Soup& soup, const Rays& rays, size_t min_hits_divisor,
+                                const BvhBuildOptions& options = {}) {
   const Expected e = expect_brute(soup, rays);
   size_t hits = 0;
   for (const Hit& h : e.hits) hits += h.prim != kNoHit;
   REQUIRE(hits > rays.size() / min_hits_divisor);
-  const Tree<4> t4 = build<4>(soup);
-  const Tree<8> t8 = build<8>(soup);
+  const Tree<4> t4 = build<4>(soup, options);
+  const Tree<8> t8 = build<8>(soup, options);
   for_each_target([&](const std::string&, bool) {
     check_all_modes(t4, soup, rays, e, rays.size(), rays.size());
     check_all_modes(t8, soup, rays, e, rays.size(), rays.size());
