@@ -265,22 +265,21 @@ HWY_INLINE bool TraceRayWith(const WideBvh<N>& bvh, const TriangleLeaves& tris, 
             continue;
           }
           bits |= 1u << second;
-          // Insertion sort of the hit children, far to near (at most N = 8 of them, usually 2 or 3).
-          uint32_t order[N];
-          int n = 0;
-          order[n++] = first;
-          for (; bits != 0; bits &= bits - 1) {
+          // Insertion sort of the hit children straight onto the stack, far to near (at most N = 8 of them,
+          // usually 3); the nearest ends on top and is visited next. Against sorting slot numbers first and
+          // pushing them in a second loop (which GCC unrolled, with many values saved to the stack): +0.9 to
+          // +1.7 % on diffuse rays (in-process A/B, five scenes, 2026-11-23).
+          const int base = sp;
+          for (bits |= 1u << first; bits != 0; bits &= bits - 1) {
             const uint32_t c = uint32_t(__builtin_ctz(bits));
-            int j = n++;
-            for (; j > 0 && t_near[order[j - 1]] < t_near[c]; --j) order[j] = order[j - 1];
-            order[j] = c;
+            const Entry e{node.child[c], node.leaf_count[c], t_near[c]};
+            int j = sp++;
+            for (; j > base && stack[j - 1].t_near < e.t_near; --j) stack[j] = stack[j - 1];
+            stack[j] = e;
           }
-          for (int k = 0; k < n - 1; ++k) {
-            const uint32_t c = order[k];
-            stack[sp++] = {node.child[c], node.leaf_count[c], t_near[c]};
-          }
-          ref = node.child[order[n - 1]];
-          count = node.leaf_count[order[n - 1]];
+          --sp;
+          ref = stack[sp].ref;
+          count = stack[sp].count;
           // The second nearest child is the likeliest next pop: start loading it (prefetching every pushed child
           // measured no better).
           Prefetch<N>(bvh, r, stack[sp - 1].ref, stack[sp - 1].count);
