@@ -219,6 +219,8 @@ HWY_INLINE bool TraceRayWith(const WideBvh<N>& bvh, const TriangleLeaves& tris, 
     uint32_t ref, count;
     float t_near;
   };
+  // Each level above leaves at most N - 1 entries; the deepest node (level kMaxWideDepth) briefly holds all N of
+  // its children while sorting them: (kMaxWideDepth - 1) (N - 1) + N entries, exactly the size below.
   Entry stack[kMaxWideDepth * (N - 1) + 1];
   int sp = 0;
   bool found = false;
