@@ -214,7 +214,7 @@ HWY_INLINE void Prefetch(const WideBvh<N>& bvh, const SingleRay& r, uint32_t ref
 // kernel hands its few remaining rays over to single-ray traversal.
 template <int N, bool kAny, bool kFma>
 HWY_INLINE bool TraceRayWith(const WideBvh<N>& bvh, const TriangleLeaves& tris, const SingleRay& r, float t_max,
-                         Hit* hit, uint32_t ref = 0, uint32_t count = 0) {
+                             Hit* hit, uint32_t ref = 0, uint32_t count = 0) {
   struct Entry {
     uint32_t ref, count;
     float t_near;
