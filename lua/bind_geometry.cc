@@ -208,7 +208,7 @@ int l_mesh(lua_State* L) {
     const std::vector<double> n = kw.numbers("normals");
     if (n.size() != pos.size()) kw.fail("normals", "must hold one normal per vertex");
     for (size_t i = 0; i < n.size(); i += 3) {
-      Vec3f v(float(n[i]), float(n[i + 1]), float(n[i + 2]));
+      Vec3f v{float(n[i]), float(n[i + 1]), float(n[i + 2])};
       if (!(length_squared(v) > 0)) kw.fail("normals", "must be non-zero");
       v = normalize(v);
       mesh.nx.push_back(v.x); mesh.ny.push_back(v.y); mesh.nz.push_back(v.z);

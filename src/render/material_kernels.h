@@ -50,7 +50,7 @@ struct MaterialTraits<MaterialType::OrenNayar> {
   static Bsdf bsdf(const Scene& s, uint32_t i, const TextureContext& tc, TransportMode) {
     const OrenNayarParams& p = s.materials.oren_nayar[i];
     const float sigma_degrees = std::clamp(s.textures.eval(p.sigma, tc), 0.0f, 90.0f);
-    return Bsdf(detail::clamp01(s.textures.eval(p.albedo, tc)), sigma_degrees * (kPi / 180));
+    return Bsdf{detail::clamp01(s.textures.eval(p.albedo, tc)), sigma_degrees * (kPi / 180)};
   }
   // Phase 2 of shade_queue with the SIMD kernel of simd/shade_eval.h (render/shade_eval_batch.cc).
   static void eval_batch(ShadeScratch<Bsdf>& sc);
