@@ -2,7 +2,7 @@
 # Installs the Debian packages torte needs, and only those that are missing (idempotent).
 # Usage: scripts/install-deps.sh [--bench]   (--bench adds Embree for bench/embree-compare)
 set -euo pipefail
-packages=(cmake g++ make pkg-config ninja-build libhwy-dev libtbb-dev libopenimageio-dev liblua5.4-dev
+packages=(cmake clang g++ make pkg-config ninja-build libhwy-dev libtbb-dev libopenimageio-dev liblua5.4-dev
           libbenchmark-dev catch2 zlib1g-dev liblz4-dev libxxhash-dev
           openimageio-tools)  # OIIO's CMake config checks that /usr/bin/iconvert etc. exist
 if [[ "${1:-}" == "--bench" ]]; then packages+=(libembree-dev); fi
