@@ -34,10 +34,14 @@ struct DielectricBsdf {
     float etap;
     if (!half_vector(wo, wi, &wm, &etap)) return {};
     const float cos_o = wo.z, cos_i = wi.z;
-    const float f = fresnel_dielectric(dot(wo, wm), eta);
     if (etap == 1) {  // reflection
+      // wo . wm = wi . wm exactly, but not once rounded; their mean is the same value whichever of wo and wi comes
+      // first, so f stays reciprocal where the Fresnel term is steepest (at the critical angle, inside the medium,
+      // one rounding moves it by 2e-4).
+      const float f = fresnel_dielectric(0.5f * (dot(wo, wm) + dot(wi, wm)), eta);
       return reflect_tint * (distrib.D(wm) * distrib.G(wo, wi) * f / std::fabs(4 * cos_i * cos_o));
     }
+    const float f = fresnel_dielectric(dot(wo, wm), eta);
     const float denom = sqr(dot(wi, wm) + dot(wo, wm) / etap) * cos_i * cos_o;
     float ft = distrib.D(wm) * (1 - f) * distrib.G(wo, wi) * std::fabs(dot(wi, wm) * dot(wo, wm) / denom);
     // Radiance is compressed into the smaller solid angle on the dense side (pbrt-v4 section 9.5.2).
