@@ -10,8 +10,10 @@
 // t_max of the packet, which closest hit lowers as its lanes find hits. Closest hit then takes the interval's
 // verdict for interior children (they inherit the node's lanes and are ordered by the interval's entry bound) and
 // tests only leaf children lane by lane, unless the packet's rays have parted (per-lane mode, see PacketStats);
-// any hit tests the survivors lane by lane (it needs live-lane counts for the single-ray fallback). The leaf test
-// skips the division when no lane is inside the triangle.
+// any hit tests the survivors lane by lane (it needs live-lane counts for the single-ray fallback). Closest-hit
+// leaves of such packets test the interval against each triangle's bounds first (8 triangles per vector) and
+// skip the triangles it misses: three quarters of them for camera packets. The leaf test skips the division when
+// no lane is inside the triangle.
 // Any hit, and closest hit in per-lane mode: once an entry holds few live rays (kSingleThreshold,
 // kClosestSingleThreshold) its subtree is traced one ray at a time with the single-ray kernel (Benthin et al.
 // 2012). Any hit visits children in any order (no entry distances computed).
@@ -23,6 +25,7 @@
 #include "core/no_fp_contract.h"  // before every other include
 
 #include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -50,35 +53,68 @@ using traverse_detail::kFarRound;
 using traverse_detail::kMaxWideDepth;
 using traverse_detail::node_floats;
 
-// Children of `node` that some valid ray of a same-octant packet may hit: the slab test in interval arithmetic
-// over the packet's bounds of origin, 1 / direction and t_max. Every lane's slab distances are products of
-// correctly rounded (hence monotonic) operations, so they lie between the corner products computed here; a child
-// rejected here fails every lane's own test.
+// The interval slab test of one axis k of a same-octant packet (interval_axes bit k set) against planes n (entry)
+// and f (exit), lanes = boxes: raises t0 to a lower bound of every ray's entry distance and lowers t1 to an upper
+// bound of every exit distance. A ray's slab distance is fl(fl(b - o) * inv), monotonic in o and in inv as each
+// rounding is: with inv > 0 it is smallest at o = o_hi and largest at o = o_lo, with inv < 0 the other way round,
+// and for a fixed b - o it is extreme at inv = i_lo or i_hi. So two products per plane bound all rays (a full
+// interval product takes four).
+template <size_t P, class D, class V = hn::Vec<D>>
+HWY_INLINE void IntervalSlab(D d, const Packet<P>& p, int k, V n, V f, V& t0, V& t1) {
+  const bool neg = p.i_hi[k] < 0;  // same octant: every lane's inverse direction has this sign
+  const auto ilo = hn::Set(d, p.i_lo[k]), ihi = hn::Set(d, p.i_hi[k]);
+  const auto dn = hn::Sub(n, hn::Set(d, neg ? p.o_lo[k] : p.o_hi[k]));
+  const auto df = hn::Sub(f, hn::Set(d, neg ? p.o_hi[k] : p.o_lo[k]));
+  const auto near_lo = hn::Min(hn::Mul(dn, ilo), hn::Mul(dn, ihi));
+  const auto far_hi = hn::Mul(hn::Max(hn::Mul(df, ilo), hn::Mul(df, ihi)), hn::Set(d, kFarRound));
+  t0 = hn::Max(t0, near_lo), t1 = hn::Min(t1, far_hi);
+}
+
+// Children of `node` that some valid ray of a same-octant packet may hit: IntervalSlab on every interval axis
+// (Reshetov et al. 2005). A child rejected here fails every lane's own test. t_lo (optional) gets each child's
+// lower bound of the entry distance.
 template <int N, size_t P>
 HWY_INLINE uint32_t IntervalChildren(const WideNode<N>& node, const Packet<P>& p, float* t_lo = nullptr) {
   const hn::CappedTag<float, N> d;
   const size_t L = hn::Lanes(d);
   const float* nf = node_floats(node);
-  const auto round = hn::Set(d, kFarRound);
   uint32_t bits = 0;
   for (size_t g = 0; g < size_t(N); g += L) {
     auto t0 = hn::Zero(d), t1 = hn::Set(d, p.t_hi);
     for (int k = 0; k < 3; ++k) {
       if (!((p.interval_axes >> k) & 1)) continue;
-      const auto olo = hn::Set(d, p.o_lo[k]), ohi = hn::Set(d, p.o_hi[k]);
-      const auto ilo = hn::Set(d, p.i_lo[k]), ihi = hn::Set(d, p.i_hi[k]);
-      const auto n = hn::Load(d, nf + p.near_off[k] + g), f = hn::Load(d, nf + p.far_off[k] + g);
-      const auto n0 = hn::Sub(n, ohi), n1 = hn::Sub(n, olo);  // near plane minus origin: [n0, n1]
-      const auto f0 = hn::Sub(f, ohi), f1 = hn::Sub(f, olo);
-      const auto near_lo = hn::Min(hn::Min(hn::Mul(n0, ilo), hn::Mul(n0, ihi)),
-                                   hn::Min(hn::Mul(n1, ilo), hn::Mul(n1, ihi)));
-      const auto far_hi = hn::Mul(hn::Max(hn::Max(hn::Mul(f0, ilo), hn::Mul(f0, ihi)),
-                                          hn::Max(hn::Mul(f1, ilo), hn::Mul(f1, ihi))),
-                                  round);
-      t0 = hn::Max(t0, near_lo), t1 = hn::Min(t1, far_hi);
+      IntervalSlab(d, p, k, hn::Load(d, nf + p.near_off[k] + g), hn::Load(d, nf + p.far_off[k] + g), t0, t1);
     }
     if (t_lo) hn::StoreU(t0, d, t_lo + g);
     bits |= MaskBits(d, hn::Le(t0, t1)) << g;
+  }
+  return bits;
+}
+
+// Triangles [g, g + 8) of the leaf (base, count) (leaf-order runs, traverse_single-inl.h) whose bounds the
+// packet's interval may hit, as bits (lanes = triangles): IntervalChildren's test on each triangle's bounds,
+// widened by p.tri_margin, so that no triangle the watertight test would hit for a lane is skipped. That test is
+// exact for vertices sheared in float, which lie within a few float roundings of the true ones (relative to the
+// coordinates and the origin); the margin is 2^-20 of the scene's extent plus the origin, and the far bound
+// t_hi is raised by as much again for the rounding of t.
+template <size_t P>
+HWY_INLINE uint32_t IntervalTriangles(const float* base, size_t count, size_t g, const Packet<P>& p) {
+  const hn::CappedTag<float, 8> d;
+  const size_t L = hn::Lanes(d);  // 8, or fewer on narrow targets: lane groups
+  const auto m = hn::Set(d, p.tri_margin);
+  const auto t_hi = hn::Set(d, p.t_hi * (1.0f + 0x1p-18f));
+  uint32_t bits = 0;
+  for (size_t h = g; h < g + 8 && h < count; h += L) {
+    auto t0 = hn::Zero(d), t1 = t_hi;
+    for (int k = 0; k < 3; ++k) {
+      if (!((p.interval_axes >> k) & 1)) continue;
+      const float* r = base + size_t(k) * count + h;  // vertex 0 on axis k; vertices 1 and 2 are 3 and 6 runs on
+      const auto a = hn::LoadU(d, r), b = hn::LoadU(d, r + 3 * count), c = hn::LoadU(d, r + 6 * count);
+      const auto lo = hn::Sub(hn::Min(a, hn::Min(b, c)), m), hi = hn::Add(hn::Max(a, hn::Max(b, c)), m);
+      const bool neg = p.i_hi[k] < 0;
+      IntervalSlab(d, p, k, neg ? hi : lo, neg ? lo : hi, t0, t1);
+    }
+    bits |= MaskBits(d, hn::And(hn::Le(t0, t1), hn::FirstN(d, count - h))) << (h - g);
   }
   return bits;
 }
@@ -103,8 +139,8 @@ HWY_INLINE uint32_t LeafChildren(const WideNode<N>& node) {
 }
 
 // Slab test of the N children of `node` against the packet's rays in `lanes`. Returns the hit children as bits;
-// child_lanes[c] gets the lanes hitting child c and t_near[c] the smallest entry distance among them.
-template <bool kAny, int N, size_t P>
+// child_lanes[c] gets the lanes hitting child c and, with kNear, t_near[c] the smallest entry distance among them.
+template <bool kNear, int N, size_t P>
 HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, uint32_t lanes, uint32_t cand,
                                    uint32_t* child_lanes, float* t_near) {
   const hn::CappedTag<float, P> d;
@@ -116,7 +152,7 @@ HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, 
   const uint32_t todo = cand & NonEmptyChildren(node);
   for (uint32_t b = todo; b != 0; b &= b - 1) {
     child_lanes[__builtin_ctz(b)] = 0;
-    t_near[__builtin_ctz(b)] = kInfinity;
+    if constexpr (kNear) t_near[__builtin_ctz(b)] = kInfinity;
   }
   uint32_t hit_children = 0;
   for (size_t g = 0; g < P; g += L) {
@@ -157,7 +193,7 @@ HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, 
       if (bits == 0) continue;
       child_lanes[c] |= bits << g;
       hit_children |= 1u << c;
-      if constexpr (!kAny) {  // any hit needs no child order
+      if constexpr (kNear) {
         const float t = hn::GetLane(hn::MinOfLanes(d, hn::IfThenElse(hit, t0, inf)));
         t_near[c] = t < t_near[c] ? t : t_near[c];
       }
@@ -195,16 +231,71 @@ HWY_INLINE V PermutedCoord(D d, const Packet<P>& p, int k, size_t g, float x, fl
   return hn::IfThenElse(is0, hn::Set(d, x), hn::IfThenElse(is1, hn::Set(d, y), hn::Set(d, z)));
 }
 
-// Tests leaf triangles [first, first + count) against the packet's lanes (lanes = rays, one triangle at a
-// time). Closest hit: lanes keep the closest hit (t_max shrinks). Any hit: hit lanes are retired (t_max = -inf).
-// Returns false when no lane can have been hit (the any-hit caller then skips its all-occluded check).
+// Tests leaf triangle i (leaf-order index; at = i - first) of the leaf (first, count) against the packet's lanes
+// (lanes = rays). `run`: when the packet has one axis permutation, the leaf's runs per vertex and permuted axis.
+// Closest hit: lanes keep the closest hit (t_max shrinks). Any hit: hit lanes are retired (t_max = -inf).
+// Returns false when no lane can have been hit.
 template <bool kAny, size_t P>
-HWY_INLINE bool PacketLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t count, uint32_t lanes, Packet<P>& p) {
+HWY_INLINE bool PacketTriangle(const TriangleLeaves& tris, uint32_t first, uint32_t count, uint32_t at,
+                               const float* const (&run)[3][3], uint32_t lanes, Packet<P>& p) {
   const hn::CappedTag<float, P> d;
   const hn::RebindToUnsigned<decltype(d)> du;
   const size_t L = hn::Lanes(d);
   const auto zero = hn::Zero(d);
+  const float* const base = tris.data.data() + 9 * size_t(first);
+  const uint32_t i = first + at;
   bool found = false;
+  for (size_t g = 0; g < P; g += L) {
+    if (((lanes >> g) & GroupMask(d)) == 0) continue;
+    const auto t_max = hn::Load(d, p.t_max + g);
+    const auto okx = hn::Load(d, p.okx + g), oky = hn::Load(d, p.oky + g), okz = hn::Load(d, p.okz + g);
+    // Vertex minus origin on the lane's permuted axes: the values the scalar test computes, so the same
+    // decisions follow. Mixed permutations select per lane.
+    hn::Vec<decltype(d)> a[3][3];
+    for (int k = 0; k < 3; ++k) {
+      if (p.same_axes) {
+        a[k][0] = hn::Sub(hn::Set(d, run[k][0][at]), okx);
+        a[k][1] = hn::Sub(hn::Set(d, run[k][1][at]), oky);
+        a[k][2] = hn::Sub(hn::Set(d, run[k][2][at]), okz);
+      } else {
+        const float* const t = base + at;
+        const float x = t[size_t(3 * k) * count], y = t[size_t(3 * k + 1) * count];
+        const float z = t[size_t(3 * k + 2) * count];
+        a[k][0] = hn::Sub(PermutedCoord(d, p, 0, g, x, y, z), okx);
+        a[k][1] = hn::Sub(PermutedCoord(d, p, 1, g, x, y, z), oky);
+        a[k][2] = hn::Sub(PermutedCoord(d, p, 2, g, x, y, z), okz);
+      }
+    }
+    auto r = WatertightTest<true>(d, a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2], a[2][0], a[2][1],
+                                  a[2][2], hn::Load(d, p.sx + g), hn::Load(d, p.sy + g), hn::Load(d, p.sz + g),
+                                  t_max, hn::Gt(t_max, zero));  // live lanes have t_max > 0
+    if (!hn::AllFalse(d, r.hit)) ResolveHits(d, t_max, r);
+    if (!hn::AllFalse(d, r.hit)) {
+      found = true;
+      if constexpr (kAny) {
+        hn::Store(hn::IfThenElse(r.hit, hn::Set(d, -kInfinity), t_max), d, p.t_max + g);
+      } else {
+        hn::Store(hn::IfThenElse(r.hit, r.t, t_max), d, p.t_max + g);
+        hn::Store(hn::IfThenElse(r.hit, r.b1, hn::Load(d, p.b1 + g)), d, p.b1 + g);
+        hn::Store(hn::IfThenElse(r.hit, r.b2, hn::Load(d, p.b2 + g)), d, p.b2 + g);
+        const auto prim = hn::Load(du, p.prim + g);
+        hn::Store(hn::IfThenElse(hn::RebindMask(du, r.hit), hn::Set(du, i), prim), du, p.prim + g);
+      }
+    }
+    if (HWY_UNLIKELY(!hn::AllFalse(d, r.zero))) {
+      RetestZeroLanes<kAny>(d, r.zero, g, tris, first, count, i, p);
+      found = true;  // maybe a hit: the caller re-checks the lanes
+    }
+  }
+  return found;
+}
+
+// Tests leaf triangles [first, first + count) against the packet's lanes, one triangle at a time (PacketTriangle).
+// Closest-hit packets of one octant first drop the triangles their interval misses (IntervalTriangles: on camera
+// packets three quarters of a leaf's triangles, which no lane would have hit). Returns false when no lane can have
+// been hit (the any-hit caller then skips its all-occluded check).
+template <bool kAny, size_t P>
+HWY_INLINE bool PacketLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t count, uint32_t lanes, Packet<P>& p) {
   const float* const base = tris.data.data() + 9 * size_t(first);
   // One permutation for the packet (camera and shadow packets): vertex k's coordinate on permuted axis j is run
   // 3 k + axes[j] of the leaf, broadcast straight from the leaf (staging the nine floats per triangle on the stack
@@ -213,50 +304,13 @@ HWY_INLINE bool PacketLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t 
   if (p.same_axes)
     for (int k = 0; k < 3; ++k)
       for (int j = 0; j < 3; ++j) run[k][j] = base + size_t(3 * k + p.axes[j]) * count;
-  for (uint32_t i = first; i < first + count; ++i) {
-    const uint32_t at = i - first;
-    for (size_t g = 0; g < P; g += L) {
-      if (((lanes >> g) & GroupMask(d)) == 0) continue;
-      const auto t_max = hn::Load(d, p.t_max + g);
-      const auto okx = hn::Load(d, p.okx + g), oky = hn::Load(d, p.oky + g), okz = hn::Load(d, p.okz + g);
-      // Vertex minus origin on the lane's permuted axes: the values the scalar test computes, so the same
-      // decisions follow. Mixed permutations select per lane.
-      hn::Vec<decltype(d)> a[3][3];
-      for (int k = 0; k < 3; ++k) {
-        if (p.same_axes) {
-          a[k][0] = hn::Sub(hn::Set(d, run[k][0][at]), okx);
-          a[k][1] = hn::Sub(hn::Set(d, run[k][1][at]), oky);
-          a[k][2] = hn::Sub(hn::Set(d, run[k][2][at]), okz);
-        } else {
-          const float* const t = base + at;
-          const float x = t[size_t(3 * k) * count], y = t[size_t(3 * k + 1) * count];
-          const float z = t[size_t(3 * k + 2) * count];
-          a[k][0] = hn::Sub(PermutedCoord(d, p, 0, g, x, y, z), okx);
-          a[k][1] = hn::Sub(PermutedCoord(d, p, 1, g, x, y, z), oky);
-          a[k][2] = hn::Sub(PermutedCoord(d, p, 2, g, x, y, z), okz);
-        }
-      }
-      auto r = WatertightTest<true>(d, a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2], a[2][0], a[2][1],
-                                    a[2][2], hn::Load(d, p.sx + g), hn::Load(d, p.sy + g), hn::Load(d, p.sz + g),
-                                    t_max, hn::Gt(t_max, zero));  // live lanes have t_max > 0
-      if (!hn::AllFalse(d, r.hit)) ResolveHits(d, t_max, r);
-      if (!hn::AllFalse(d, r.hit)) {
-        found = true;
-        if constexpr (kAny) {
-          hn::Store(hn::IfThenElse(r.hit, hn::Set(d, -kInfinity), t_max), d, p.t_max + g);
-        } else {
-          hn::Store(hn::IfThenElse(r.hit, r.t, t_max), d, p.t_max + g);
-          hn::Store(hn::IfThenElse(r.hit, r.b1, hn::Load(d, p.b1 + g)), d, p.b1 + g);
-          hn::Store(hn::IfThenElse(r.hit, r.b2, hn::Load(d, p.b2 + g)), d, p.b2 + g);
-          const auto prim = hn::Load(du, p.prim + g);
-          hn::Store(hn::IfThenElse(hn::RebindMask(du, r.hit), hn::Set(du, i), prim), du, p.prim + g);
-        }
-      }
-      if (HWY_UNLIKELY(!hn::AllFalse(d, r.zero))) {
-        RetestZeroLanes<kAny>(d, r.zero, g, tris, first, count, i, p);
-        found = true;  // maybe a hit: the caller re-checks the lanes
-      }
-    }
+  bool found = false;
+  if (!kAny && p.same_octant) {
+    for (uint32_t g = 0; g < count; g += 8)
+      for (uint32_t bits = IntervalTriangles(base, count, g, p); bits != 0; bits &= bits - 1)
+        found |= PacketTriangle<kAny>(tris, first, count, g + uint32_t(__builtin_ctz(bits)), run, lanes, p);
+  } else {
+    for (uint32_t at = 0; at < count; ++at) found |= PacketTriangle<kAny>(tris, first, count, at, run, lanes, p);
   }
   return found;
 }
@@ -318,6 +372,11 @@ void TracePacket(const WideBvh<N>& bvh, const float extent[3], const TriangleLea
   // hand-over they cost ~150 instructions each).
   RayBlock block;
   bool block_ready = false;
+  if (!kAny && p.same_octant) {  // IntervalTriangles' margin (see there)
+    float o_max = 0;
+    for (int k = 0; k < 3; ++k) o_max = std::fmax(o_max, std::fmax(std::fabs(p.o_lo[k]), std::fabs(p.o_hi[k])));
+    p.tri_margin = 0x1p-20f * (std::fmax(extent[0], std::fmax(extent[1], extent[2])) + o_max);
+  }
   for (;;) {
     if ((kAny || per_lane) && std::popcount(lanes) <= (kAny ? kSingleThreshold<P> : kClosestSingleThreshold<P>)) {
       // Few rays left here: one at a time is cheaper than a mostly empty packet.
@@ -377,19 +436,14 @@ void TracePacket(const WideBvh<N>& bvh, const float extent[3], const TriangleLea
         bits = cand & ~leaf_cand;
         for (uint32_t b = bits; b != 0; b &= b - 1) child_lanes[__builtin_ctz(b)] = lanes;
         if (leaf_cand != 0) {
-          uint32_t leaf_lanes[N];
-          float leaf_near[N];
-          const uint32_t leaf_bits = PacketChildren<kAny>(node, p, lanes, leaf_cand, leaf_lanes, leaf_near);
-          for (uint32_t b = leaf_bits; b != 0; b &= b - 1) {
-            const uint32_t c = uint32_t(__builtin_ctz(b));
-            child_lanes[c] = leaf_lanes[c], t_near[c] = leaf_near[c];
-          }
-          bits |= leaf_bits;
+          // Their order is the interval's entry bound as well: the smallest per-lane entry distance orders
+          // them no better (measured: a reduction per leaf child cost 5 %, AVX3, 2026-11-23).
+          bits |= PacketChildren<false>(node, p, lanes, leaf_cand, child_lanes, nullptr);
         }
       } else {
         uint32_t cand = ~0u;
         if (p.same_octant) cand = IntervalChildren(node, p);
-        bits = cand == 0 ? 0 : PacketChildren<kAny>(node, p, lanes, cand, child_lanes, t_near);
+        bits = cand == 0 ? 0 : PacketChildren<!kAny>(node, p, lanes, cand, child_lanes, t_near);
       }
       if (bits != 0) {
         if constexpr (kAny) {
@@ -414,6 +468,8 @@ void TracePacket(const WideBvh<N>& bvh, const float extent[3], const TriangleLea
         for (int k = 0; k < n - 1; ++k) {
           const uint32_t c = order[k];
           stack[sp++] = {node.child[c], node.leaf_count[c], child_lanes[c], t_near[c]};
+          // The second nearest is the likeliest next pop: start loading it (+2 to 4 %, AVX3, 2026-11-23).
+          if (k == n - 2) Prefetch<N>(bvh, tris.data.data(), node.child[c], node.leaf_count[c]);
         }
         const uint32_t c = order[n - 1];
         ref = node.child[c], count = node.leaf_count[c], lanes = child_lanes[c];
@@ -439,6 +495,23 @@ void TracePacket(const WideBvh<N>& bvh, const float extent[3], const TriangleLea
   }
 }
 
+// The packet's results as Hits: a miss keeps prim = kNoHit and b1 = b2 = 0 from SetupPacket and gets t = inf
+// (its t_max may be finite). Branch-free, the t select as one vector op.
+template <size_t P>
+HWY_INLINE void WriteHits(Packet<P>& p, size_t n, Hit* hits) {
+  const hn::CappedTag<float, P> d;
+  const hn::RebindToUnsigned<decltype(d)> du;
+  for (size_t g = 0; g < P; g += hn::Lanes(d)) {
+    const auto miss = hn::RebindMask(d, hn::Eq(hn::Load(du, p.prim + g), hn::Set(du, kNoHit)));
+    hn::Store(hn::IfThenElse(miss, hn::Set(d, kInfinity), hn::Load(d, p.t_max + g)), d, p.t_max + g);
+  }
+  for (size_t i = 0; i < n; ++i) {
+    Hit h;
+    h.t = p.t_max[i], h.prim = p.prim[i], h.b1 = p.b1[i], h.b2 = p.b2[i];
+    hits[i] = h;
+  }
+}
+
 template <int N, size_t P>
 void ClosestPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                     Hit* hits) {
@@ -455,8 +528,7 @@ void ClosestPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const Ray
     if (!stats.per_lane && stats.leaf_visits > 0)
       occupancy = 0.9f * occupancy +
                   0.1f * float(stats.leaf_lanes) / (float(stats.leaf_visits) * float(std::popcount(p.valid)));
-    for (size_t i = 0; i < n; ++i)
-      hits[begin + i] = p.prim[i] == kNoHit ? Hit{} : Hit{p.t_max[i], p.prim[i], p.b1[i], p.b2[i]};
+    WriteHits(p, n, hits + begin);
   }
 }
 

@@ -193,9 +193,10 @@ HWY_INLINE bool IntersectLeaf(const TriangleLeaves& tris, uint32_t first, uint32
   return found || more;
 }
 
-// Software prefetch of a node (all its cache lines) or of a leaf's triangle block.
+// Software prefetch of a node (all its cache lines) or of a leaf's triangle block (leaf_data:
+// TriangleLeaves::data). Also used by the packet kernel.
 template <int N>
-HWY_INLINE void Prefetch(const WideBvh<N>& bvh, const SingleRay& r, uint32_t ref, uint32_t count) {
+HWY_INLINE void Prefetch(const WideBvh<N>& bvh, const float* leaf_data, uint32_t ref, uint32_t count) {
   if (!(ref & kLeafFlag)) {
     // A node is whole, aligned cache lines: no loop.
     const char* p = reinterpret_cast<const char*>(&bvh.nodes[ref]);
@@ -203,7 +204,7 @@ HWY_INLINE void Prefetch(const WideBvh<N>& bvh, const SingleRay& r, uint32_t ref
     for (size_t line = 0; line < sizeof(WideNode<N>); line += 64) __builtin_prefetch(p + line);
     return;
   }
-  const char* p = reinterpret_cast<const char*>(r.leaf_data + 9 * size_t(ref & ~kLeafFlag));
+  const char* p = reinterpret_cast<const char*>(leaf_data + 9 * size_t(ref & ~kLeafFlag));
   const uintptr_t end = reinterpret_cast<uintptr_t>(p) + 36 * size_t(count);
   for (uintptr_t a = reinterpret_cast<uintptr_t>(p) & ~uintptr_t(63); a < end; a += 64)
     __builtin_prefetch(reinterpret_cast<const void*>(a));
@@ -263,7 +264,7 @@ HWY_INLINE bool TraceRayWith(const WideBvh<N>& bvh, const TriangleLeaves& tris, 
             stack[sp++] = {node.child[far], node.leaf_count[far], t_near[far]};
             ref = node.child[near];
             count = node.leaf_count[near];
-            Prefetch<N>(bvh, r, stack[sp - 1].ref, stack[sp - 1].count);
+            Prefetch<N>(bvh, r.leaf_data, stack[sp - 1].ref, stack[sp - 1].count);
             continue;
           }
           bits |= 1u << second;
@@ -284,7 +285,7 @@ HWY_INLINE bool TraceRayWith(const WideBvh<N>& bvh, const TriangleLeaves& tris, 
           count = stack[sp].count;
           // The second nearest child is the likeliest next pop: start loading it (prefetching every pushed child
           // measured no better).
-          Prefetch<N>(bvh, r, stack[sp - 1].ref, stack[sp - 1].count);
+          Prefetch<N>(bvh, r.leaf_data, stack[sp - 1].ref, stack[sp - 1].count);
           continue;
         }
       }
