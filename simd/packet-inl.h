@@ -101,7 +101,7 @@ HWY_INLINE void SetupPacket(Packet<P>& p, const RaySoA& rays, size_t begin, size
       }
       t_hi = hn::Max(t_hi, t_max);  // invalid lanes hold -inf
     }
-    const auto w = SetupWatertight(d, dx, dy, dz);
+    const auto w = SetupWatertight(d, dx, dy, dz, ix, iy, iz);
     hn::Store(w.s[0], d, p.sx + g), hn::Store(w.s[1], d, p.sy + g), hn::Store(w.s[2], d, p.sz + g);
     const auto& axis_is = w.axis_is;
     hn::Store(Pick(axis_is[0][0], axis_is[0][1], ox, oy, oz), d, p.okx + g);

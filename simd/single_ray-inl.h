@@ -136,11 +136,12 @@ HWY_INLINE void SetupRays(const RaySoA& rays, size_t first, size_t n, const floa
                                          hn::LoadU(d, src[5] + g)};
     const auto t_max = hn::LoadU(d, src[6] + g);
     valid |= MaskBits(d, ValidRayLanes(d, o[0], o[1], o[2], dir[0], dir[1], dir[2], t_max)) << g;
-    const auto w = SetupWatertight(d, dir[0], dir[1], dir[2]);
+    const hn::Vec<decltype(d)> inv_d[3] = {hn::Div(one, dir[0]), hn::Div(one, dir[1]), hn::Div(one, dir[2])};
+    const auto w = SetupWatertight(d, dir[0], dir[1], dir[2], inv_d[0], inv_d[1], inv_d[2]);
     auto fma = hn::FirstN(d, L);
     for (int a = 0; a < 3; ++a) {
       hn::Store(o[a], d, b.o[a] + g);
-      const auto inv = hn::Div(one, dir[a]);
+      const auto inv = inv_d[a];
       hn::Store(inv, d, b.inv_d[a] + g);
       hn::Store(hn::Mul(inv, hn::Set(d, traverse_detail::kFarRound)), d, b.inv_d_far[a] + g);
       const auto scale = hn::Mul(hn::Abs(inv), hn::Add(hn::Set(d, extent[a]), hn::Abs(o[a])));

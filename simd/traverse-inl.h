@@ -138,17 +138,18 @@ HWY_INLINE hn::Mask<D> ValidRayLanes(D d, V ox, V oy, V oz, V dx, V dy, V dz, V 
   return hn::AndNot(zero_dir, hn::And(finite, hn::Gt(t_max, zero)));
 }
 
-// WatertightRay's constructor lane by lane, with the same axis choice, tie rule and divisions, so the vector
+// WatertightRay's constructor lane by lane, with the same axis choice, tie rule and arithmetic, so the vector
 // tests take the scalar test's decisions: kz = max_dimension(|d|) (x > y ? (x > z ? 0 : 2) : (y > z ? 1 : 2)),
-// kx = kz + 1, ky = kx + 1 (mod 3), kx and ky swapped when d[kz] < 0.
+// kx = kz + 1, ky = kx + 1 (mod 3), kx and ky swapped when d[kz] < 0. ix, iy, iz: 1 / dx, 1 / dy, 1 / dz (the
+// same divisions WatertightRay does for sz).
 template <class D>
 struct WatertightSetup {
   hn::Mask<D> axis_is[3][2];  // axis_is[k][a]: the k-th permuted axis (kx, ky, kz) is a (a = 0, 1; neither: 2)
   hn::Vec<D> s[3];            // shear sx, sy, sz
 };
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE WatertightSetup<D> SetupWatertight(D d, V dx, V dy, V dz) {
-  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+HWY_INLINE WatertightSetup<D> SetupWatertight(D d, V dx, V dy, V dz, V ix, V iy, V iz) {
+  const V zero = hn::Zero(d);
   const auto ax = hn::Abs(dx), ay = hn::Abs(dy), az = hn::Abs(dz);
   const auto x_gt_y = hn::Gt(ax, ay);
   const auto kz0 = hn::And(x_gt_y, hn::Gt(ax, az)), kz1 = hn::AndNot(x_gt_y, hn::Gt(ay, az));
@@ -162,9 +163,9 @@ HWY_INLINE WatertightSetup<D> SetupWatertight(D d, V dx, V dy, V dz) {
   w.axis_is[1][1] = hn::Or(hn::AndNot(flip, kz2), hn::And(flip, kz0));
   w.axis_is[2][0] = kz0;
   w.axis_is[2][1] = kz1;
-  w.s[0] = hn::Div(Pick(w.axis_is[0][0], w.axis_is[0][1], dx, dy, dz), dkz);
-  w.s[1] = hn::Div(Pick(w.axis_is[1][0], w.axis_is[1][1], dx, dy, dz), dkz);
-  w.s[2] = hn::Div(one, dkz);
+  w.s[2] = Pick(kz0, kz1, ix, iy, iz);
+  w.s[0] = hn::Mul(Pick(w.axis_is[0][0], w.axis_is[0][1], dx, dy, dz), w.s[2]);
+  w.s[1] = hn::Mul(Pick(w.axis_is[1][0], w.axis_is[1][1], dx, dy, dz), w.s[2]);
   return w;
 }
 
