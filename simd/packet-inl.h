@@ -46,7 +46,7 @@ struct Packet {
   // (interval_axes bit a clear), which only makes the test more conservative.
   float o_lo[3], o_hi[3], i_lo[3], i_hi[3], t_hi;
   uint32_t interval_axes;
-  float tri_margin;  // IntervalTriangles: how far triangle bounds are widened (set by the traversal)
+  float tri_o_lo[3], tri_o_hi[3];  // IntervalTriangles: the origin bounds widened by a margin (set by the traversal)
   Ray ray(size_t i) const { return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, t_max[i]}; }
 };
 

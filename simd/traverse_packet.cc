@@ -54,17 +54,17 @@ using traverse_detail::kMaxWideDepth;
 using traverse_detail::node_floats;
 
 // The interval slab test of one axis k of a same-octant packet (interval_axes bit k set) against planes n (entry)
-// and f (exit), lanes = boxes: raises t0 to a lower bound of every ray's entry distance and lowers t1 to an upper
-// bound of every exit distance. A ray's slab distance is fl(fl(b - o) * inv), monotonic in o and in inv as each
-// rounding is: with inv > 0 it is smallest at o = o_hi and largest at o = o_lo, with inv < 0 the other way round,
-// and for a fixed b - o it is extreme at inv = i_lo or i_hi. So two products per plane bound all rays (a full
-// interval product takes four).
+// and f (exit), lanes = boxes, for origins in [o_lo, o_hi]: raises t0 to a lower bound of every ray's entry
+// distance and lowers t1 to an upper bound of every exit distance. A ray's slab distance is fl(fl(b - o) * inv),
+// monotonic in o and in inv as each rounding is: with inv > 0 it is smallest at o = o_hi and largest at o = o_lo,
+// with inv < 0 the other way round, and for a fixed b - o it is extreme at inv = i_lo or i_hi. So two products per
+// plane bound all rays (a full interval product takes four).
 template <size_t P, class D, class V = hn::Vec<D>>
-HWY_INLINE void IntervalSlab(D d, const Packet<P>& p, int k, V n, V f, V& t0, V& t1) {
+HWY_INLINE void IntervalSlab(D d, const Packet<P>& p, int k, float o_lo, float o_hi, V n, V f, V& t0, V& t1) {
   const bool neg = p.i_hi[k] < 0;  // same octant: every lane's inverse direction has this sign
   const auto ilo = hn::Set(d, p.i_lo[k]), ihi = hn::Set(d, p.i_hi[k]);
-  const auto dn = hn::Sub(n, hn::Set(d, neg ? p.o_lo[k] : p.o_hi[k]));
-  const auto df = hn::Sub(f, hn::Set(d, neg ? p.o_hi[k] : p.o_lo[k]));
+  const auto dn = hn::Sub(n, hn::Set(d, neg ? o_lo : o_hi));
+  const auto df = hn::Sub(f, hn::Set(d, neg ? o_hi : o_lo));
   const auto near_lo = hn::Min(hn::Mul(dn, ilo), hn::Mul(dn, ihi));
   const auto far_hi = hn::Mul(hn::Max(hn::Mul(df, ilo), hn::Mul(df, ihi)), hn::Set(d, kFarRound));
   t0 = hn::Max(t0, near_lo), t1 = hn::Min(t1, far_hi);
@@ -83,7 +83,8 @@ HWY_INLINE uint32_t IntervalChildren(const WideNode<N>& node, const Packet<P>& p
     auto t0 = hn::Zero(d), t1 = hn::Set(d, p.t_hi);
     for (int k = 0; k < 3; ++k) {
       if (!((p.interval_axes >> k) & 1)) continue;
-      IntervalSlab(d, p, k, hn::Load(d, nf + p.near_off[k] + g), hn::Load(d, nf + p.far_off[k] + g), t0, t1);
+      IntervalSlab(d, p, k, p.o_lo[k], p.o_hi[k], hn::Load(d, nf + p.near_off[k] + g),
+                   hn::Load(d, nf + p.far_off[k] + g), t0, t1);
     }
     if (t_lo) hn::StoreU(t0, d, t_lo + g);
     bits |= MaskBits(d, hn::Le(t0, t1)) << g;
@@ -92,16 +93,16 @@ HWY_INLINE uint32_t IntervalChildren(const WideNode<N>& node, const Packet<P>& p
 }
 
 // Triangles [g, g + 8) of the leaf (base, count) (leaf-order runs, traverse_single-inl.h) whose bounds the
-// packet's interval may hit, as bits (lanes = triangles): IntervalChildren's test on each triangle's bounds,
-// widened by p.tri_margin, so that no triangle the watertight test would hit for a lane is skipped. That test is
-// exact for vertices sheared in float, which lie within a few float roundings of the true ones (relative to the
-// coordinates and the origin); the margin is 2^-20 of the scene's extent plus the origin, and the far bound
-// t_hi is raised by as much again for the rounding of t.
+// packet's interval may hit, as bits (lanes = triangles): IntervalSlab on each triangle's bounds, for origins
+// widened by a margin on both sides (p.tri_o_lo, p.tri_o_hi; the same as widening the bounds), so that no
+// triangle the watertight test would hit for a lane is skipped. That test is exact for vertices sheared in float,
+// which lie within a few float roundings of the true ones (relative to the coordinates and the origin); the margin
+// is 2^-20 of the scene's extent plus the origin, twice what that takes, and the far bound t_hi is raised by
+// 2^-18 for the rounding of t.
 template <size_t P>
 HWY_INLINE uint32_t IntervalTriangles(const float* base, size_t count, size_t g, const Packet<P>& p) {
   const hn::CappedTag<float, 8> d;
   const size_t L = hn::Lanes(d);  // 8, or fewer on narrow targets: lane groups
-  const auto m = hn::Set(d, p.tri_margin);
   const auto t_hi = hn::Set(d, p.t_hi * (1.0f + 0x1p-18f));
   uint32_t bits = 0;
   for (size_t h = g; h < g + 8 && h < count; h += L) {
@@ -110,13 +111,20 @@ HWY_INLINE uint32_t IntervalTriangles(const float* base, size_t count, size_t g,
       if (!((p.interval_axes >> k) & 1)) continue;
       const float* r = base + size_t(k) * count + h;  // vertex 0 on axis k; vertices 1 and 2 are 3 and 6 runs on
       const auto a = hn::LoadU(d, r), b = hn::LoadU(d, r + 3 * count), c = hn::LoadU(d, r + 6 * count);
-      const auto lo = hn::Sub(hn::Min(a, hn::Min(b, c)), m), hi = hn::Add(hn::Max(a, hn::Max(b, c)), m);
+      const auto lo = hn::Min(a, hn::Min(b, c)), hi = hn::Max(a, hn::Max(b, c));
       const bool neg = p.i_hi[k] < 0;
-      IntervalSlab(d, p, k, neg ? hi : lo, neg ? lo : hi, t0, t1);
+      IntervalSlab(d, p, k, p.tri_o_lo[k], p.tri_o_hi[k], neg ? hi : lo, neg ? lo : hi, t0, t1);
     }
     bits |= MaskBits(d, hn::And(hn::Le(t0, t1), hn::FirstN(d, count - h))) << (h - g);
   }
   return bits;
+}
+
+// child_lanes[0, N) = lanes.
+template <int N>
+HWY_INLINE void FillLanes(uint32_t* child_lanes, uint32_t lanes) {
+  const hn::CappedTag<uint32_t, N> du;
+  for (size_t g = 0; g < size_t(N); g += hn::Lanes(du)) hn::StoreU(hn::Set(du, lanes), du, child_lanes + g);
 }
 
 // Occupied child slots, and leaf children, as bits.
@@ -375,7 +383,8 @@ void TracePacket(const WideBvh<N>& bvh, const float extent[3], const TriangleLea
   if (!kAny && p.same_octant) {  // IntervalTriangles' margin (see there)
     float o_max = 0;
     for (int k = 0; k < 3; ++k) o_max = std::fmax(o_max, std::fmax(std::fabs(p.o_lo[k]), std::fabs(p.o_hi[k])));
-    p.tri_margin = 0x1p-20f * (std::fmax(extent[0], std::fmax(extent[1], extent[2])) + o_max);
+    const float margin = 0x1p-20f * (std::fmax(extent[0], std::fmax(extent[1], extent[2])) + o_max);
+    for (int k = 0; k < 3; ++k) p.tri_o_lo[k] = p.o_lo[k] - margin, p.tri_o_hi[k] = p.o_hi[k] + margin;
   }
   for (;;) {
     if ((kAny || per_lane) && std::popcount(lanes) <= (kAny ? kSingleThreshold<P> : kClosestSingleThreshold<P>)) {
@@ -434,7 +443,7 @@ void TracePacket(const WideBvh<N>& bvh, const float extent[3], const TriangleLea
         const uint32_t cand = IntervalChildren(node, p, t_near) & NonEmptyChildren(node);
         const uint32_t leaf_cand = cand & LeafChildren(node);
         bits = cand & ~leaf_cand;
-        for (uint32_t b = bits; b != 0; b &= b - 1) child_lanes[__builtin_ctz(b)] = lanes;
+        FillLanes<N>(child_lanes, lanes);  // every slot: one vector store, where a loop over bits cost 3 %
         if (leaf_cand != 0) {
           // Their order is the interval's entry bound as well: the smallest per-lane entry distance orders
           // them no better (measured: a reduction per leaf child cost 5 %, AVX3, 2026-11-23).
