@@ -28,6 +28,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <type_traits>
 
@@ -35,6 +36,8 @@
 #include "core/error.h"
 #include "geometry/triangle.h"
 #include "traverse.h"
+
+#include <hwy/cache_control.h>  // Stream, FlushStream
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "traverse_packet.cc"  // found through the simd/ include directory of torte_core
@@ -504,15 +507,37 @@ void TracePacket(const WideBvh<N>& bvh, const float extent[3], const TriangleLea
   }
 }
 
+// Calls tracing at least this many rays write their Hits with non-temporal stores (when the array is 16-byte
+// aligned): 20 bytes a ray, and ordinary stores first read every line they fill from memory. On a million camera
+// rays of the bunny (AVX3, 2026-11-23) writing the Hits took 35 ns per packet of 16 with ordinary stores, 26 ns
+// streamed, of about 450 ns (+2 % in all). Below this the Hits fit in the caches, where the caller finds them.
+constexpr size_t kStreamHitsFrom = size_t(1) << 16;
+
 // The packet's results as Hits: a miss keeps prim = kNoHit and b1 = b2 = 0 from SetupPacket and gets t = inf
-// (its t_max may be finite). Branch-free, the t select as one vector op.
+// (its t_max may be finite). Branch-free, the t select as one vector op. `stream`: a whole packet (n == P) is
+// staged in 5 P words and streamed (see kStreamHitsFrom; the caller flushes).
 template <size_t P>
-HWY_INLINE void WriteHits(Packet<P>& p, size_t n, Hit* hits) {
+HWY_INLINE void WriteHits(Packet<P>& p, size_t n, Hit* hits, bool stream) {
   const hn::CappedTag<float, P> d;
   const hn::RebindToUnsigned<decltype(d)> du;
   for (size_t g = 0; g < P; g += hn::Lanes(d)) {
     const auto miss = hn::RebindMask(d, hn::Eq(hn::Load(du, p.prim + g), hn::Set(du, kNoHit)));
     hn::Store(hn::IfThenElse(miss, hn::Set(d, kInfinity), hn::Load(d, p.t_max + g)), d, p.t_max + g);
+  }
+  static_assert(sizeof(Hit) == 5 * sizeof(uint32_t) && offsetof(Hit, instance) == 16);
+  if (stream && n == P) {
+    alignas(64) uint32_t words[5 * P];
+    for (size_t i = 0; i < P; ++i) {
+      std::memcpy(&words[5 * i], &p.t_max[i], 4);
+      words[5 * i + 1] = p.prim[i];
+      std::memcpy(&words[5 * i + 2], &p.b1[i], 4);
+      std::memcpy(&words[5 * i + 3], &p.b2[i], 4);
+      words[5 * i + 4] = kNoHit;  // instance
+    }
+    const hn::CappedTag<uint32_t, 4> d4;
+    uint32_t* const out = reinterpret_cast<uint32_t*>(hits);  // 16-byte aligned (checked by the caller)
+    for (size_t k = 0; k < 5 * P; k += hn::Lanes(d4)) hn::Stream(hn::Load(d4, words + k), d4, out + k);
+    return;
   }
   for (size_t i = 0; i < n; ++i) {
     Hit h;
@@ -528,6 +553,8 @@ void ClosestPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const Ray
   float extent[3];  // for the single-ray hand-over's constants
   traverse_detail::plane_extent(bvh, extent);
   float occupancy = 1.0f;  // running mean leaf occupancy of the packets started in interval mode
+  // Every packet's Hits start 20 P bytes after the previous one's: 16-byte aligned when the array is.
+  const bool stream = count >= kStreamHitsFrom && reinterpret_cast<uintptr_t>(hits) % 16 == 0;
   for (size_t begin = 0; begin < count; begin += P) {
     const size_t n = count - begin < P ? count - begin : P;
     SetupPacket<N, true>(p, rays, begin, n);
@@ -537,8 +564,9 @@ void ClosestPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const Ray
     if (!stats.per_lane && stats.leaf_visits > 0)
       occupancy = 0.9f * occupancy +
                   0.1f * float(stats.leaf_lanes) / (float(stats.leaf_visits) * float(std::popcount(p.valid)));
-    WriteHits(p, n, hits + begin);
+    WriteHits(p, n, hits + begin, stream);
   }
+  if (stream) hwy::FlushStream();
 }
 
 template <int N, size_t P>

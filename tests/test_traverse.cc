@@ -167,6 +167,44 @@ TEST_CASE("same-octant packets aimed at vertices and edges find the brute force'
   }
 }
 
+TEST_CASE("packets write the single rays' hits on batches large enough to be streamed", "[traverse]") {
+  // From 2^16 rays on, closest-hit packets write their Hits with non-temporal stores when the array is 16-byte
+  // aligned; a batch of 2^16 + 37 camera rays (every third with a finite t_max, some missing the sphere), written to
+  // an aligned array and to one 20 bytes further (not 16-byte aligned: ordinary stores), must give the single-ray
+  // kernel's Hits field by field.
+  const Soup sphere = icosphere(3, {0, 0, 0}, 1.0f);
+  const Tree<8> t8 = build<8>(sphere);
+  Rays cam;
+  const Vec3f eye(0.2f, 0.1f, -4);
+  const int w = 256, h = 257;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      cam.add(eye, normalize(Vec3f((x - 127.5f) / 350, (128.5f - y) / 350, 1)), (x + y) % 3 == 0 ? 3.5f : kInfinity);
+  const size_t n = cam.size();
+  REQUIRE(n == (size_t(1) << 16) + 256);
+  for_each_target([&](const std::string&, bool) {
+    std::vector<Hit> single(n);
+    intersect_closest(t8.bvh, t8.leaves, cam.soa(), n, single.data());
+    size_t hits = 0;
+    for (const Hit& hit : single) hits += hit.prim != kNoHit;
+    REQUIRE(hits > n / 4);
+    REQUIRE(hits < n - n / 4);
+    for (int packet : {8, 16}) {
+      std::vector<Hit> storage(n + 1);  // operator new: 16-byte aligned; storage.data() + 1 is not
+      for (Hit* out : {storage.data(), storage.data() + 1}) {
+        INFO("packet " << packet << ", Hits at " << (reinterpret_cast<uintptr_t>(out) % 16) << " mod 16");
+        std::fill(storage.begin(), storage.end(), Hit{-1.0f, 7, 2.0f, 3.0f, 5});
+        intersect_closest_packets(t8.bvh, t8.leaves, cam.soa(), n, out, packet);
+        size_t unlike = 0;
+        for (size_t i = 0; i < n; ++i)
+          unlike += !(single[i].prim == out[i].prim && single[i].t == out[i].t && single[i].b1 == out[i].b1 &&
+                      single[i].b2 == out[i].b2 && out[i].instance == kNoHit);
+        CHECK(unlike == 0);
+      }
+    }
+  });
+}
+
 namespace {
 
 // Unit cubes on an integer grid in a 3D checkerboard pattern (x + y + z even): node bounds lie on the integer and
