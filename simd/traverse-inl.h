@@ -68,6 +68,16 @@ inline bool is_valid_ray(const Ray& ray) {
   return ray.t_max > 0;  // false for NaN too
 }
 
+// Starts loading rays [at, at + 16) of all seven arrays when they exist (one cache line of each when aligned).
+// The kernels call it a few blocks ahead: the arrays stream in from memory, and the hardware prefetcher alone left
+// the packet set-up waiting on them (+1 to 2 % on a million camera rays, under 1 % on diffuse rays, AVX3, 2026-11-23).
+constexpr size_t kRayPrefetchAhead = 64;  // rays
+inline void prefetch_rays(const RaySoA& rays, size_t at, size_t count) {
+  if (at + 16 > count) return;
+  const float* arrays[7] = {rays.ox, rays.oy, rays.oz, rays.dx, rays.dy, rays.dz, rays.t_max};
+  for (const float* a : arrays) __builtin_prefetch(a + at);
+}
+
 // The seven arrays of rays [begin, begin + n) for loads of P lanes: the caller's arrays when n == P, else copies
 // in `tail` padded with zero rays (t_max = 0: invalid), so every P-lane load stays in bounds.
 template <size_t P>

@@ -38,6 +38,7 @@ void ClosestSingle(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RayS
   for (size_t first = 0; first < count; first += kRayBlock) {
     const size_t n = std::min(kRayBlock, count - first);
     SetupRays<N>(rays, first, n, extent, block);
+    traverse_detail::prefetch_rays(rays, first + traverse_detail::kRayPrefetchAhead, count);
     for (size_t j = 0; j < n; ++j) {
       Hit& hit = hits[first + j];
       hit = Hit{};
@@ -56,6 +57,7 @@ void AnySingle(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& 
   for (size_t first = 0; first < count; first += kRayBlock) {
     const size_t n = std::min(kRayBlock, count - first);
     SetupRays<N>(rays, first, n, extent, block);
+    traverse_detail::prefetch_rays(rays, first + traverse_detail::kRayPrefetchAhead, count);
     for (size_t j = 0; j < n; ++j) {
       const bool traced = !bvh.nodes.empty() && ((block.valid >> j) & 1) != 0;
       occluded[first + j] =

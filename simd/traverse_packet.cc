@@ -558,6 +558,7 @@ void ClosestPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const Ray
   for (size_t begin = 0; begin < count; begin += P) {
     const size_t n = count - begin < P ? count - begin : P;
     SetupPacket<N, true>(p, rays, begin, n);
+    traverse_detail::prefetch_rays(rays, begin + traverse_detail::kRayPrefetchAhead, count);
     PacketStats stats;
     stats.per_lane = (begin / P) % kIntervalProbeEvery != 0 && occupancy < kSparseBatchOccupancy;
     if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, false>(bvh, extent, tris, p, &stats);
@@ -578,6 +579,7 @@ void AnyPackets(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA&
   for (size_t begin = 0; begin < count; begin += P) {
     const size_t n = count - begin < P ? count - begin : P;
     SetupPacket<N, true>(p, rays, begin, n);
+    traverse_detail::prefetch_rays(rays, begin + traverse_detail::kRayPrefetchAhead, count);
     if (p.valid != 0 && !bvh.nodes.empty()) TracePacket<N, P, true>(bvh, extent, tris, p, nullptr);
     // Occluded lanes were retired with t_max = -inf; invalid ones never were valid.
     for (size_t i = 0; i < n; ++i) occluded[begin + i] = ((p.valid >> i) & 1) && !(p.t_max[i] > 0) ? 1 : 0;
