@@ -446,7 +446,7 @@ void TracePacket(const WideBvh<N>& bvh, const float extent[3], const TriangleLea
         const uint32_t cand = IntervalChildren(node, p, t_near) & NonEmptyChildren(node);
         const uint32_t leaf_cand = cand & LeafChildren(node);
         bits = cand & ~leaf_cand;
-        FillLanes<N>(child_lanes, lanes);  // every slot: one vector store, where a loop over bits cost 3 %
+        FillLanes<N>(child_lanes, lanes);  // every slot: one vector store (a loop over the bits had 3 % of samples)
         if (leaf_cand != 0) {
           // Their order is the interval's entry bound as well: the smallest per-lane entry distance orders
           // them no better (measured: a reduction per leaf child cost 5 %, AVX3, 2026-11-23).

@@ -75,8 +75,17 @@ HWY_INLINE uint32_t IntersectChildren(const WideNode<N>& node, const SingleRay& 
     // A ray lying in a slab plane gives 0 * inf = NaN there (exact test only); that slab must not constrain the
     // interval (as in SlabRay). Max(x, acc) / Min(x, acc) return acc when x is NaN on every target (x86 min/max
     // return their second operand, HWY_SCALAR the non-NaN one), so keep the accumulator second.
-    const auto t0 = hn::Max(tz0, hn::Max(ty0, hn::Max(tx0, hn::Zero(d))));
-    const auto t1 = hn::Min(tz1, hn::Min(ty1, hn::Min(tx1, hn::Set(d, t_max))));
+    hn::Vec<decltype(d)> t0, t1;
+    if constexpr (kFma) {
+      // No NaN on this path (finite, non-tiny 1 / d; planes finite or infinite), so the order is free: a pairwise
+      // tree is one step shorter on the traversal's critical path (+1.3 to 1.9 % on diffuse rays, AVX3,
+      // 2026-11-23).
+      t0 = hn::Max(hn::Max(tx0, ty0), hn::Max(tz0, hn::Zero(d)));
+      t1 = hn::Min(hn::Min(tx1, ty1), hn::Min(tz1, hn::Set(d, t_max)));
+    } else {
+      t0 = hn::Max(tz0, hn::Max(ty0, hn::Max(tx0, hn::Zero(d))));
+      t1 = hn::Min(tz1, hn::Min(ty1, hn::Min(tx1, hn::Set(d, t_max))));
+    }
     hn::StoreU(t0, d, t_near + g);
     bits |= MaskBits(d, hn::Le(t0, t1)) << g;
   }
