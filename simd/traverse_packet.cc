@@ -279,7 +279,7 @@ HWY_INLINE bool PacketTriangle(const TriangleLeaves& tris, uint32_t first, uint3
     }
     // Any hit skips the rest when no lane is inside and branches on hits; closest hit runs branch-free to the
     // end: after the interval test, whether a lane is inside is a coin toss (half of the tests), which the
-    // branches mispredicted (branch-free: +4 to 6 % on camera packets, AVX3, 2026-11-23).
+    // branches mispredicted (branch-free: +1.5 to 5 % on camera packets, AVX3, 2026-11-23).
     auto r = WatertightTest<kAny>(d, a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2], a[2][0], a[2][1],
                                   a[2][2], hn::Load(d, p.sx + g), hn::Load(d, p.sy + g), hn::Load(d, p.sz + g),
                                   t_max, hn::Gt(t_max, zero));  // live lanes have t_max > 0
