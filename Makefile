@@ -4,8 +4,8 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_ARGS ?=
 # The compiler: clang++ (Debian's clang 14, installed by install-deps.sh). Its single-ray traversal kernel is 2 to
-# 8 % faster than g++ 12's on the 1 M to 16 M triangle bunnies, the same on small meshes (bench/RESULTS.md,
-# 2026-11-23). `make CXX_COMPILER=g++` builds with GCC (CMake re-creates a build directory's cache when the
+# 8 % faster than g++ 12's on the 1 M to 16 M triangle bunnies, the same on small meshes (AVX2 EPYC,
+# bench/RESULTS.md, 2026-11-23). `make CXX_COMPILER=g++` builds with GCC (CMake re-creates a build directory's cache when the
 # compiler changes).
 CXX_COMPILER ?= clang++
 CONFIGURE = cmake -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=$(CXX_COMPILER)

@@ -160,9 +160,9 @@ TEST_CASE("same-octant packets aimed at vertices and edges find the brute force'
 
 TEST_CASE("packets write the single rays' hits on batches large enough to be streamed", "[traverse]") {
   // From 2^16 rays on, closest-hit packets write their Hits with non-temporal stores when the array is 16-byte
-  // aligned; a batch of 2^16 + 37 camera rays (every third with a finite t_max, some missing the sphere), written to
-  // an aligned array and to one 20 bytes further (not 16-byte aligned: ordinary stores), must give the single-ray
-  // kernel's Hits field by field.
+  // aligned; a batch of 2^16 + 261 camera rays (every third with a finite t_max, some missing the sphere; the last
+  // packet partial, which is written with ordinary stores), written to an aligned array and to one 20 bytes
+  // further (not 16-byte aligned: ordinary stores), must give the single-ray kernel's Hits field by field.
   const Soup sphere = icosphere(3, {0, 0, 0}, 1.0f);
   const Tree<8> t8 = build<8>(sphere);
   Rays cam;
@@ -171,8 +171,9 @@ TEST_CASE("packets write the single rays' hits on batches large enough to be str
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       cam.add(eye, normalize(Vec3f((x - 127.5f) / 350, (128.5f - y) / 350, 1)), (x + y) % 3 == 0 ? 3.5f : kInfinity);
+  for (int i = 0; i < 5; ++i) cam.add(eye, normalize(Vec3f(0.05f * i, 0.02f, 1)));  // into a partial last packet
   const size_t n = cam.size();
-  REQUIRE(n == (size_t(1) << 16) + 256);
+  REQUIRE(n == (size_t(1) << 16) + 261);
   for_each_target([&](const std::string&, bool) {
     std::vector<Hit> single(n);
     intersect_closest(t8.bvh, t8.leaves, cam.soa(), n, single.data());
