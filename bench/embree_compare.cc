@@ -67,6 +67,7 @@ struct Options {
   bool min_time = false;                // --stat min: fastest repetition instead of the median
   bool embree_robust = false;           // --embree-robust: RTC_SCENE_FLAG_ROBUST (torte's guarantees)
   bool embree_tree = false;             // --tree embree: torte's kernels on Embree's tree
+  bool embree_t_only = false;           // --embree-hits t: Embree's closest hits keep only t (see embree_hit)
 };
 Options g_opt;
 
@@ -144,7 +145,16 @@ RTCScene build_embree(RTCDevice dev, const std::vector<float>& vertices, const T
   return scene;
 }
 
-void embree_closest1(RTCScene scene, const RayBatch& rays, size_t b, size_t e, float* t) {
+// Closest hits leave both sides with the same record: torte writes a Hit (t, primitive, barycentrics, instance;
+// 20 bytes) per ray, and so does Embree's side here, from its RTCHit, which is what a renderer shading the hits
+// needs from either. With --embree-hits t Embree's side keeps only t (the harness before 2026-11-23), which spares
+// it 16 bytes of stores per ray that torte pays.
+inline void embree_hit(Hit* out, size_t i, bool hit, float t, uint32_t prim, float u, float v, uint32_t inst) {
+  if (g_opt.embree_t_only) out[i].t = hit ? t : kInfinity;
+  else out[i] = hit ? Hit{t, prim, u, v, inst} : Hit{};
+}
+
+void embree_closest1(RTCScene scene, const RayBatch& rays, size_t b, size_t e, Hit* out) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   for (size_t i = b; i < e; ++i) {
@@ -154,7 +164,8 @@ void embree_closest1(RTCScene scene, const RayBatch& rays, size_t b, size_t e, f
     rh.ray.tfar = rays.t_max[i], rh.ray.mask = ~0u, rh.ray.id = uint32_t(i), rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene, &ctx, &rh);
-    t[i] = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : kInfinity;
+    embree_hit(out, i, rh.hit.geomID != RTC_INVALID_GEOMETRY_ID, rh.ray.tfar, rh.hit.primID, rh.hit.u, rh.hit.v,
+               rh.hit.instID[0]);
   }
 }
 
@@ -185,7 +196,7 @@ void load16(Packet& r, int* valid, const RayBatch& rays, size_t i, size_t e) {
   }
 }
 
-void embree_closest16(RTCScene scene, const RayBatch& rays, size_t b, size_t e, float* t, bool coherent) {
+void embree_closest16(RTCScene scene, const RayBatch& rays, size_t b, size_t e, Hit* out, bool coherent) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -196,7 +207,8 @@ void embree_closest16(RTCScene scene, const RayBatch& rays, size_t b, size_t e, 
     for (int k = 0; k < 16; ++k) rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect16(valid, scene, &ctx, &rh);
     for (int k = 0; k < 16 && i + k < e; ++k)
-      t[i + k] = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar[k] : kInfinity;
+      embree_hit(out, i + k, rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID, rh.ray.tfar[k], rh.hit.primID[k],
+                 rh.hit.u[k], rh.hit.v[k], rh.hit.instID[0][k]);
   }
 }
 
@@ -254,8 +266,8 @@ void compare_workload(const char* name, const BenchScene& s, const Workload& w, 
                       RTCScene scene, Kind kind, bool packets) {
   if (!workload_selected(name)) return;
   const size_t n = w.rays.size();
-  std::vector<Hit> hits(kind == Kind::Closest ? n : 0);
-  std::vector<float> torte_t(kind == Kind::Closest ? n : 0), embree_t(kind == Kind::Closest ? n : 0);
+  std::vector<Hit> hits(kind == Kind::Closest ? n : 0), embree_hits_out(kind == Kind::Closest ? n : 0);
+  std::vector<float> torte_t(kind == Kind::Closest ? n : 0);
   std::vector<uint8_t> torte_occ(kind == Kind::Any ? n : 0), embree_occ(kind == Kind::Any ? n : 0);
   auto run_torte = [&] {
     for_rays(n, [&](size_t b, size_t e) {
@@ -272,8 +284,8 @@ void compare_workload(const char* name, const BenchScene& s, const Workload& w, 
   auto run_embree = [&](bool coherent) {
     for_rays(n, [&](size_t b, size_t e) {
       if (kind == Kind::Closest) {
-        if (packets) embree_closest16(scene, w.rays, b, e, embree_t.data(), coherent);
-        else embree_closest1(scene, w.rays, b, e, embree_t.data());
+        if (packets) embree_closest16(scene, w.rays, b, e, embree_hits_out.data(), coherent);
+        else embree_closest1(scene, w.rays, b, e, embree_hits_out.data());
       } else {
         if (packets) embree_any16(scene, w.rays, b, e, embree_occ.data(), coherent);
         else embree_any1(scene, w.rays, b, e, embree_occ.data());
@@ -294,10 +306,20 @@ void compare_workload(const char* name, const BenchScene& s, const Workload& w, 
   if (kind == Kind::Closest) {
     for (size_t i = 0; i < n; ++i) torte_t[i] = hits[i].prim != kNoHit ? hits[i].t : kInfinity;
     Reference er;  // Embree's answer as the reference
-    er.t = embree_t;
+    er.t.resize(n);
+    for (size_t i = 0; i < n; ++i) er.t[i] = embree_hits_out[i].t;
     vs_embree = check_closest(er, torte_t.data(), n, kRelTol);
     vs_ref = check_closest(w.ref, torte_t.data(), n, kRelTol);
-    for (float t : embree_t) embree_hits += t < kInfinity;
+    for (float t : er.t) embree_hits += t < kInfinity;
+    if (!g_opt.embree_t_only) {  // both sides hit: the same triangle? (a shared edge may go either way)
+      size_t both = 0, other_prim = 0;
+      for (size_t i = 0; i < n; ++i) {
+        if (hits[i].prim == kNoHit || embree_hits_out[i].prim == kNoHit) continue;
+        // torte's Hit::prim is a leaf-order position; prim_indices maps it to the mesh's triangle, Embree's id.
+        ++both, other_prim += a.bvh.prim_indices[hits[i].prim] != embree_hits_out[i].prim;
+      }
+      std::printf("# %s: of %zu rays both hit, %zu hit another triangle in Embree\n", name, both, other_prim);
+    }
   } else {
     Reference er;
     er.occluded = embree_occ;
@@ -375,7 +397,8 @@ int usage() {
   std::fprintf(stderr,
                "usage: embree-compare [--threads T] [--reps R] [--stat median|min] [--workloads a,b,...] [--full] "
                "[--scenes a,b,...] [--packet 8|16] "
-               "[--width 4|8] [--embree-context best|coherent|incoherent] [--embree-robust] [--tree torte|embree]\n"
+               "[--width 4|8] [--embree-context best|coherent|incoherent] [--embree-robust] [--embree-hits full|t] "
+               "[--tree torte|embree]\n"
                "  --threads T  traversal and build threads (default 1)\n"
                "  --reps R     repetitions per measurement; medians are printed (default 5)\n"
                "  --stat min   print the fastest repetition instead of the median (A/B runs on a loaded machine)\n"
@@ -389,6 +412,8 @@ int usage() {
                "  --embree-robust  build Embree's scene with RTC_SCENE_FLAG_ROBUST: conservative box tests and\n"
                "               a watertight triangle test, the guarantees torte always gives (default: Embree's\n"
                "               faster default mode, the reference of the targets)\n"
+               "  --embree-hits t  Embree's closest hits keep only t instead of the 20-byte Hit record torte\n"
+               "               writes (t, primitive, barycentrics, instance; default full: the same output)\n"
                "  --tree embree  torte's kernels trace a tree from Embree's SAH builder (rtcBuildBVH with its\n"
                "               triangle builder's settings) in torte's layout: kernels compared on one tree\n",
                kDefaultBvhWidth);
@@ -405,6 +430,10 @@ int main(int argc, char** argv) {
       set_full_run(true);
     } else if (a == "--embree-robust") {
       g_opt.embree_robust = true;
+    } else if (a == "--embree-hits") {
+      const char* v = value();
+      if (!v || (std::string(v) != "full" && std::string(v) != "t")) return usage();
+      g_opt.embree_t_only = std::string(v) == "t";
     } else if (a == "--stat" || a == "--workloads") {
       const char* v = value();
       if (!v) return usage();
@@ -449,9 +478,11 @@ int main(int argc, char** argv) {
   rtcSetDeviceErrorFunction(dev, embree_error, nullptr);
   rtcSetDeviceMemoryMonitorFunction(dev, memory_monitor, nullptr);
   std::printf("# embree-compare: Embree %s, torte traversal target %s, torte wide%d, torte packet %d, Embree packet "
-              "context %s, Embree mode %s, torte traces %s tree, threads %d, %s of %d, %s\n",
+              "context %s, Embree mode %s, Embree closest hits kept: %s, torte traces %s tree, threads %d, %s of %d, "
+              "%s\n",
               RTC_VERSION_STRING, traversal_target_name(), g_opt.width, g_opt.packet,
               g_opt.embree_context.c_str(), g_opt.embree_robust ? "robust" : "default",
+              g_opt.embree_t_only ? "t only" : "full Hit record, as torte",
               g_opt.embree_tree ? "Embree's" : "its own", g_opt.threads,
               g_opt.min_time ? "minimum" : "median", g_opt.reps,
               g_opt.threads == 1 ? "traversal in thread CPU time, builds in process CPU time" : "wall time");
