@@ -518,6 +518,41 @@ void TracePacket(const WideBvh<N>& bvh, const float extent[3], const TriangleLea
 // streamed, of about 450 ns (+2 % in all). Below this the Hits fit in the caches, where the caller finds them.
 constexpr size_t kStreamHitsFrom = size_t(1) << 16;
 
+#if HWY_TARGET <= HWY_AVX3
+// AVX-512: a packet of 16 results becomes its 80 Hit words (5 per ray: t, prim, b1, b2, instance) by two-table
+// permutes, 5 vectors of 16 words: word w of the packet is field w % 5 of ray w / 5. The scalar staging it
+// replaces took 80 four-byte stores, whose 16-byte reloads for the streaming stores could not forward.
+struct HitWordTables {
+  alignas(64) int32_t t_prim[5][16];  // lane j of vector k: index into (t, prim) for fields 0 and 1
+  alignas(64) int32_t b1_b2[5][16];   // and into (b1, b2) for fields 2 and 3
+  uint16_t is_t_prim[5], is_b1_b2[5];  // lanes of those fields; the others are field 4, the instance (kNoHit)
+};
+constexpr HitWordTables MakeHitWordTables() {
+  HitWordTables tab{};
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 16; ++j) {
+      const int w = 16 * k + j, ray = w / 5, field = w % 5;
+      tab.t_prim[k][j] = field == 1 ? 16 + ray : ray;
+      tab.b1_b2[k][j] = field == 3 ? 16 + ray : ray;
+      if (field < 2) tab.is_t_prim[k] |= uint16_t(1u << j);
+      if (field == 2 || field == 3) tab.is_b1_b2[k] |= uint16_t(1u << j);
+    }
+  return tab;
+}
+HWY_INLINE void HitWords16(const Packet<16>& p, uint32_t* words) {
+  static constexpr HitWordTables kTab = MakeHitWordTables();
+  const __m512 t = _mm512_load_ps(p.t_max), b1 = _mm512_load_ps(p.b1), b2 = _mm512_load_ps(p.b2);
+  const __m512 prim = _mm512_castsi512_ps(_mm512_load_si512(p.prim));
+  const __m512 none = _mm512_castsi512_ps(_mm512_set1_epi32(int(kNoHit)));
+  for (int k = 0; k < 5; ++k) {
+    const __m512 x = _mm512_permutex2var_ps(t, _mm512_load_si512(kTab.t_prim[k]), prim);
+    const __m512 y = _mm512_permutex2var_ps(b1, _mm512_load_si512(kTab.b1_b2[k]), b2);
+    const __m512 out = _mm512_mask_blend_ps(kTab.is_b1_b2[k], _mm512_mask_blend_ps(kTab.is_t_prim[k], none, x), y);
+    _mm512_store_ps(reinterpret_cast<float*>(words + 16 * k), out);
+  }
+}
+#endif
+
 // The packet's results as Hits: a miss keeps prim = kNoHit and b1 = b2 = 0 from SetupPacket and gets t = inf
 // (its t_max may be finite). Branch-free, the t select as one vector op. `stream`: a whole packet (n == P) is
 // staged in 5 P words and streamed (see kStreamHitsFrom; the caller flushes).
@@ -532,18 +567,35 @@ HWY_INLINE void WriteHits(Packet<P>& p, size_t n, Hit* hits, bool stream) {
   static_assert(sizeof(Hit) == 5 * sizeof(uint32_t) && offsetof(Hit, instance) == 16);
   if (stream && n == P) {
     alignas(64) uint32_t words[5 * P];
-    for (size_t i = 0; i < P; ++i) {
-      std::memcpy(&words[5 * i], &p.t_max[i], 4);
-      words[5 * i + 1] = p.prim[i];
-      std::memcpy(&words[5 * i + 2], &p.b1[i], 4);
-      std::memcpy(&words[5 * i + 3], &p.b2[i], 4);
-      words[5 * i + 4] = kNoHit;  // instance
+#if HWY_TARGET <= HWY_AVX3
+    if constexpr (P == 16) {
+      HitWords16(p, words);
+    } else
+#endif
+    {
+      for (size_t i = 0; i < P; ++i) {
+        std::memcpy(&words[5 * i], &p.t_max[i], 4);
+        words[5 * i + 1] = p.prim[i];
+        std::memcpy(&words[5 * i + 2], &p.b1[i], 4);
+        std::memcpy(&words[5 * i + 3], &p.b2[i], 4);
+        words[5 * i + 4] = kNoHit;  // instance
+      }
     }
     const hn::CappedTag<uint32_t, 4> d4;
     uint32_t* const out = reinterpret_cast<uint32_t*>(hits);  // 16-byte aligned (checked by the caller)
     for (size_t k = 0; k < 5 * P; k += hn::Lanes(d4)) hn::Stream(hn::Load(d4, words + k), d4, out + k);
     return;
   }
+#if HWY_TARGET <= HWY_AVX3
+  if constexpr (P == 16) {
+    if (n == P) {  // the same words, copied with vector moves that forward from the vector stores
+      alignas(64) uint32_t words[5 * P];
+      HitWords16(p, words);
+      std::memcpy(static_cast<void*>(hits), words, sizeof(words));
+      return;
+    }
+  }
+#endif
   for (size_t i = 0; i < n; ++i) {
     Hit h;
     h.t = p.t_max[i], h.prim = p.prim[i], h.b1 = p.b1[i], h.b2 = p.b2[i];
