@@ -40,8 +40,9 @@ int ceil_log2(uint32_t n) {
 // 1). Every copy is two aligned 16-byte moves, so a ref just written (a partition's swap, a small node's
 // reordering) reads back through store forwarding; the 28-byte layout before this one read its upper 16 bytes
 // across two stores, which cannot forward and stalled each swap (a fifth of the partition's time), and split a
-// cache line in one ref of two. Lane 3 is never used as a coordinate: bins and boxes carry garbage there. Its
-// 1 keeps the centroid's lane 3 normal (an id's bits are a denormal float, slow in arithmetic).
+// cache line in one ref of two. Lane 3 is never used as a coordinate: bins and boxes carry garbage there. hi's
+// 1 makes the centroid's lane 3 (id bits + 1) * 0.5 a normal float: the id's bits alone are mostly a denormal,
+// and a product of denormals can take a slow microcode assist.
 struct alignas(16) PrimRef {
   __m128 lo, hi;
   static PrimRef make(const Bounds3f& b, uint32_t prim) {
