@@ -554,8 +554,9 @@ HWY_INLINE void HitWords16(const Packet<16>& p, uint32_t* words) {
 #endif
 
 // The packet's results as Hits: a miss keeps prim = kNoHit and b1 = b2 = 0 from SetupPacket and gets t = inf
-// (its t_max may be finite). Branch-free, the t select as one vector op. `stream`: a whole packet (n == P) is
-// staged in 5 P words and streamed (see kStreamHitsFrom; the caller flushes).
+// (its t_max may be finite). Branch-free, the t select as one vector op. A whole packet (n == P) is staged as its
+// 5 P words when it is streamed (`stream`, see kStreamHitsFrom; the caller flushes) or, on AVX-512 (HitWords16),
+// always: there the words are five vectors, copied out with moves that forward from their stores.
 template <size_t P>
 HWY_INLINE void WriteHits(Packet<P>& p, size_t n, Hit* hits, bool stream) {
   const hn::CappedTag<float, P> d;
@@ -565,14 +566,17 @@ HWY_INLINE void WriteHits(Packet<P>& p, size_t n, Hit* hits, bool stream) {
     hn::Store(hn::IfThenElse(miss, hn::Set(d, kInfinity), hn::Load(d, p.t_max + g)), d, p.t_max + g);
   }
   static_assert(sizeof(Hit) == 5 * sizeof(uint32_t) && offsetof(Hit, instance) == 16);
-  if (stream && n == P) {
+#if HWY_TARGET <= HWY_AVX3
+  constexpr bool kVectorWords = P == 16;
+#else
+  constexpr bool kVectorWords = false;
+#endif
+  if (n == P && (stream || kVectorWords)) {
     alignas(64) uint32_t words[5 * P];
 #if HWY_TARGET <= HWY_AVX3
-    if constexpr (P == 16) {
-      HitWords16(p, words);
-    } else
+    if constexpr (kVectorWords) HitWords16(p, words);
 #endif
-    {
+    if constexpr (!kVectorWords) {
       for (size_t i = 0; i < P; ++i) {
         std::memcpy(&words[5 * i], &p.t_max[i], 4);
         words[5 * i + 1] = p.prim[i];
@@ -581,21 +585,15 @@ HWY_INLINE void WriteHits(Packet<P>& p, size_t n, Hit* hits, bool stream) {
         words[5 * i + 4] = kNoHit;  // instance
       }
     }
-    const hn::CappedTag<uint32_t, 4> d4;
-    uint32_t* const out = reinterpret_cast<uint32_t*>(hits);  // 16-byte aligned (checked by the caller)
-    for (size_t k = 0; k < 5 * P; k += hn::Lanes(d4)) hn::Stream(hn::Load(d4, words + k), d4, out + k);
+    if (stream) {
+      const hn::CappedTag<uint32_t, 4> d4;
+      uint32_t* const out = reinterpret_cast<uint32_t*>(hits);  // 16-byte aligned (checked by the caller)
+      for (size_t k = 0; k < 5 * P; k += hn::Lanes(d4)) hn::Stream(hn::Load(d4, words + k), d4, out + k);
+    } else {
+      std::memcpy(static_cast<void*>(hits), words, sizeof(words));
+    }
     return;
   }
-#if HWY_TARGET <= HWY_AVX3
-  if constexpr (P == 16) {
-    if (n == P) {  // the same words, copied with vector moves that forward from the vector stores
-      alignas(64) uint32_t words[5 * P];
-      HitWords16(p, words);
-      std::memcpy(static_cast<void*>(hits), words, sizeof(words));
-      return;
-    }
-  }
-#endif
   for (size_t i = 0; i < n; ++i) {
     Hit h;
     h.t = p.t_max[i], h.prim = p.prim[i], h.b1 = p.b1[i], h.b2 = p.b2[i];
