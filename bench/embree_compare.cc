@@ -267,7 +267,6 @@ void compare_workload(const char* name, const BenchScene& s, const Workload& w, 
   if (!workload_selected(name)) return;
   const size_t n = w.rays.size();
   std::vector<Hit> hits(kind == Kind::Closest ? n : 0), embree_hits_out(kind == Kind::Closest ? n : 0);
-  std::vector<float> torte_t(kind == Kind::Closest ? n : 0);
   std::vector<uint8_t> torte_occ(kind == Kind::Any ? n : 0), embree_occ(kind == Kind::Any ? n : 0);
   auto run_torte = [&] {
     for_rays(n, [&](size_t b, size_t e) {
@@ -304,12 +303,11 @@ void compare_workload(const char* name, const BenchScene& s, const Workload& w, 
   Check vs_embree, vs_ref;
   size_t embree_hits = 0;
   if (kind == Kind::Closest) {
-    for (size_t i = 0; i < n; ++i) torte_t[i] = hits[i].prim != kNoHit ? hits[i].t : kInfinity;
     Reference er;  // Embree's answer as the reference
     er.t.resize(n);
     for (size_t i = 0; i < n; ++i) er.t[i] = embree_hits_out[i].t;
-    vs_embree = check_closest(er, torte_t.data(), n, kRelTol);
-    vs_ref = check_closest(w.ref, torte_t.data(), n, kRelTol);
+    vs_embree = check_closest(er, hits.data(), n, kRelTol);
+    vs_ref = check_closest(w.ref, hits.data(), n, kRelTol);
     for (float t : er.t) embree_hits += t < kInfinity;
     if (!g_opt.embree_t_only) {  // both sides hit: the same triangle? (a shared edge may go either way)
       size_t both = 0, other_prim = 0;

@@ -12,8 +12,9 @@
 // tests only leaf children lane by lane, unless the packet's rays have parted (per-lane mode, see PacketStats);
 // any hit tests the survivors lane by lane (it needs live-lane counts for the single-ray fallback). Closest-hit
 // leaves of such packets test the interval against each triangle's bounds first (8 triangles per vector) and
-// skip the triangles it misses: three quarters of them for camera packets. The leaf test skips the division when
-// no lane is inside the triangle.
+// skip the triangles it misses: three quarters of them for camera packets. The any-hit leaf test skips the
+// division when no lane is inside the triangle; closest hit, where that is a coin toss after the culling, runs
+// branch-free.
 // Any hit, and closest hit in per-lane mode: once an entry holds few live rays (kSingleThreshold,
 // kClosestSingleThreshold) its subtree is traced one ray at a time with the single-ray kernel (Benthin et al.
 // 2012). Any hit visits children in any order (no entry distances computed).
