@@ -1,0 +1,2 @@
+-- expect: unknown key 'radis'
+torte.shape.sphere{radis = 1}

@@ -1,0 +1,2 @@
+-- expect: unexpected symbol
+local x = = 1
