@@ -51,7 +51,9 @@ int message_handler(lua_State* L) {
   return 1;
 }
 
-void open_torte(lua_State* L, const RunOptions& options) {
+}  // namespace
+
+void open_torte_module(lua_State* L, const RunOptions& options) {
   lua_newtable(L);
   const int torte_index = lua_gettop(L);
   lua_pushstring(L, TORTE_VERSION);
@@ -90,7 +92,10 @@ void open_torte(lua_State* L, const RunOptions& options) {
   lua_settop(L, torte_index - 1);
 }
 
-}  // namespace
+void set_run_context(lua_State* L, RunContext* ctx) {
+  lua_pushlightuserdata(L, ctx);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &kContextKey);
+}
 
 RunContext& run_context(lua_State* L) {
   lua_rawgetp(L, LUA_REGISTRYINDEX, &kContextKey);
@@ -110,8 +115,7 @@ int run_script(const RunOptions& options) {
   ctx.seed_override = options.seed_override;
   ctx.quiet = options.quiet;
   ctx.cancel = options.cancel;
-  lua_pushlightuserdata(L, &ctx);
-  lua_rawsetp(L, LUA_REGISTRYINDEX, &kContextKey);
+  set_run_context(L, &ctx);
 
   int code = kExitOk;
   const auto start = std::chrono::steady_clock::now();
@@ -121,7 +125,7 @@ int run_script(const RunOptions& options) {
   lua_pushcfunction(L, [](lua_State* L2) -> int {
     const auto* opts = static_cast<const RunOptions*>(lua_touserdata(L2, 1));
     luaL_openlibs(L2);
-    open_torte(L2, *opts);
+    open_torte_module(L2, *opts);
     lua_getglobal(L2, "require");
     lua_pushstring(L2, "torte.prelude");
     lua_call(L2, 1, 0);

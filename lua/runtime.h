@@ -1,6 +1,8 @@
 // Runs a scene script: a Lua state with the torte module, the script's key=value arguments, and errors
 // reported as one line with the script location.
 #pragma once
+#include <lua.h>
+
 #include <atomic>
 #include <string>
 #include <utility>
@@ -18,6 +20,14 @@ struct RunOptions {
 };
 
 enum ExitCode { kExitOk = 0, kExitError = 1, kExitInterrupted = 130 };
+
+struct RunContext;
+
+/// Adds the torte module to L (global `torte` and `require "torte"`, the embedded Lua modules, torte.args from
+/// `options`); the Lua standard libraries must be open. For run_script, fuzz harnesses and tests.
+void open_torte_module(lua_State* L, const RunOptions& options);
+/// Makes `ctx` the RunContext the bindings of L consult (run_context(L)); it must outlive L.
+void set_run_context(lua_State* L, RunContext* ctx);
 
 // Returns the process exit code; errors are printed to stderr as "torte: error: <file>:<line>: <message>".
 int run_script(const RunOptions& options);
