@@ -55,6 +55,16 @@ function M.region_files(dir)
   return files
 end
 
+-- The keys of a table in ascending order (numbers, or strings): pairs() order varies from run to run (Lua
+-- seeds string hashing per state), and ids and materials handed out while iterating must not.
+local function sorted_keys(t)
+  local keys = {}
+  for k in pairs(t) do keys[#keys + 1] = k end
+  table.sort(keys)
+  return keys
+end
+M.sorted_keys = sorted_keys
+
 local function ceil_log2(n)
   local b = 0
   while (1 << b) < n do b = b + 1 end
@@ -101,9 +111,10 @@ local PACK4096 = "<" .. ("i2"):rep(4096)
 local function tint_voxels(ids, tintable, b, reg)
   local sel, present = biomes.selector(b)
   local maps = {}
-  for c in pairs(present) do
+  local tinted = sorted_keys(tintable)  -- reg:tinted hands out new ids: in a fixed order
+  for _, c in ipairs(sorted_keys(present)) do
     local m = {}
-    for id in pairs(tintable) do m[id] = reg:tinted(id, c) end
+    for _, id in ipairs(tinted) do m[id] = reg:tinted(id, c) end
     maps[biomes.INDEX[c]] = m
   end
   return data.map_int16(ids, maps, sel)
@@ -123,7 +134,7 @@ local function tint_section(ids, by_id, reg, biome_fn)
   if not b then return ids end
   if b.uniform then
     local remap = {}
-    for id in pairs(tintable) do remap[id] = reg:tinted(id, b.uniform) end
+    for _, id in ipairs(sorted_keys(tintable)) do remap[id] = reg:tinted(id, b.uniform) end
     return data.map_int16(ids, remap)
   end
   return tint_voxels(ids, tintable, b, reg)
@@ -170,7 +181,7 @@ local function palette_section(palette, states, dv, reg, where, biome_fn)
   local ok, ids, counts = pcall(data.unpack_bits, states, bits, 4096, padded, map)
   if not ok then error(where .. ": " .. region.bare_error(ids), 0) end
   local non_air, by_id = 0, {}
-  for i, c in pairs(counts) do
+  for i, c in ipairs(counts) do  -- counts[i]: voxels using palette entry i
     if c > 0 then
       if i > n then error(where .. (": block index %d is outside the palette of %d"):format(i - 1, n), 0) end
       if not air[i] then non_air = non_air + c end
@@ -229,7 +240,7 @@ local function deliver(opt, stats, cx, cy, cz, ids, non_air, by_id)
   -- emitters: positions of blocks whose id emits
   local reg = opt.registry
   if opt.emitters then
-    for id in pairs(by_id) do
+    for _, id in ipairs(sorted_keys(by_id)) do  -- in id order: the list is capped at max_emitters
       if id ~= 0 and reg:emission(id) and #stats.emitters < (opt.max_emitters or 4096) then
         local init = 1
         local pat = string.pack("<i2", id)
@@ -423,7 +434,7 @@ function M.water_surfaces(sections, water)
     water = {[water] = true}
   end
   local pats = {}
-  for id in pairs(water) do
+  for _, id in ipairs(sorted_keys(water)) do
     if id ~= 0 then pats[#pats + 1] = string.pack("<i2", id) end
   end
   if #pats == 0 then return 0, {} end
