@@ -108,7 +108,9 @@ if have_world then
       dvs[#dvs + 1] = ("%d (%d chunks)"):format(dv, stats.data_versions[dv])
     end
     local unknown = {}
-    for n, c in pairs(stats.unknown) do unknown[#unknown + 1] = ("%s %d"):format(n:gsub("^minecraft:", ""), c) end
+    for n, c in pairs(stats.unknown) do
+      unknown[#unknown + 1] = ("%s %d"):format(world.printable(n):gsub("^minecraft:", ""), c)
+    end
     table.sort(unknown)
     io.stderr:write(("minecraft: %s: %d chunks (%d full, %d not full, %d bad), DataVersion %s, %d sections, "
                      .. "%d non-air blocks, %d voxels in the grid (%d water cells below the surface left out), "
