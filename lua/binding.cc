@@ -217,7 +217,8 @@ void KwArgs::finish() {
       throw Error(function_ + ": positional values are not accepted; pass key = value pairs");
     }
     const std::string key = lua_tostring(L_, -1);
-    if (!read_.count(key) && unknown.empty()) unknown = key;
+    // The smallest unknown key, not the first lua_next gives: that order changes from run to run.
+    if (!read_.count(key) && (unknown.empty() || key < unknown)) unknown = key;
   }
   if (unknown.empty()) return;
   std::string known;

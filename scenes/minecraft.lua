@@ -88,17 +88,29 @@ if have_world then
   local t_water = torte.clock()
   local deep_water, water_surface = world.water_surfaces(sections, reg:ids_of("minecraft:water"))
   t_water = torte.clock() - t_water
-  for key, ids in pairs(sections) do
+  -- In a fixed order (pairs() order changes from run to run, and so would the grid's chunk table).
+  local keys = {}
+  for key in pairs(sections) do
     local cx, cy, cz = key:match("^(%-?%d+),(%-?%d+),(%-?%d+)$")
-    grid:set_chunk(tonumber(cx), tonumber(cy), tonumber(cz), ids)
+    keys[#keys + 1] = {tonumber(cx), tonumber(cy), tonumber(cz), key}
   end
+  table.sort(keys, function(a, b)
+    if a[1] ~= b[1] then return a[1] < b[1] end
+    if a[2] ~= b[2] then return a[2] < b[2] end
+    return a[3] < b[3]
+  end)
+  for _, k in ipairs(keys) do grid:set_chunk(k[1], k[2], k[3], sections[k[4]]) end
   sections = nil
   reg:define(grid, {emission = opt.emission})
   if not torte.quiet then
     local dvs = {}
-    for dv, n in pairs(stats.data_versions) do dvs[#dvs + 1] = ("%d (%d chunks)"):format(dv, n) end
+    for _, dv in ipairs(world.sorted_keys(stats.data_versions)) do
+      dvs[#dvs + 1] = ("%d (%d chunks)"):format(dv, stats.data_versions[dv])
+    end
     local unknown = {}
-    for n, c in pairs(stats.unknown) do unknown[#unknown + 1] = ("%s %d"):format(n:gsub("^minecraft:", ""), c) end
+    for n, c in pairs(stats.unknown) do
+      unknown[#unknown + 1] = ("%s %d"):format(world.printable(n):gsub("^minecraft:", ""), c)
+    end
     table.sort(unknown)
     io.stderr:write(("minecraft: %s: %d chunks (%d full, %d not full, %d bad), DataVersion %s, %d sections, "
                      .. "%d non-air blocks, %d voxels in the grid (%d water cells below the surface left out), "
@@ -120,7 +132,8 @@ if have_world then
     local y, R = 62.875, 200000
     -- Tinted like the most common water surface of the loaded blocks (their biome's water colour).
     local wd, best = blocks.definition("water"), 0
-    for id, n in pairs(water_surface) do
+    for _, id in ipairs(world.sorted_keys(water_surface)) do  -- ties: the lowest id
+      local n = water_surface[id]
       if n > best and reg:tint(id) then wd, best = blocks.tinted_definition(blocks.definition("water"), reg:tint(id)), n end
     end
     local water = blocks.make_material(wd, wd.color)

@@ -136,10 +136,12 @@ local function classes_of(list, n, offset)
   return out
 end
 
--- Per chunk: the column/cell classes of pre-1.18 chunks, computed once (cached in `level`).
+-- Per chunk: the column/cell classes of pre-1.18 chunks, computed once (cached by `level` table, beside it: a
+-- key inside it could be met in a chunk's own NBT).
+local legacy_cache = setmetatable({}, {__mode = "k"})
 local function legacy_biomes(level)
   local b = level.Biomes
-  local cached = level.__biomes
+  local cached = legacy_cache[level]
   if cached ~= nil then return cached end
   local out = false
   if type(b) == "string" and #b == 256 then        -- bytes (<= 1.12)
@@ -155,7 +157,7 @@ local function legacy_biomes(level)
       out.layers[layer] = r.uniform and r or {cells = r}
     end
   end
-  level.__biomes = out
+  legacy_cache[level] = out
   return out
 end
 

@@ -10,7 +10,8 @@
 -- A file is an 8 KiB header (1024 big-endian locations: 3 bytes sector offset, 1 byte sector count; then 1024
 -- timestamps) followed by chunks in 4 KiB sectors. A chunk is a 4-byte big-endian length, a compression byte
 -- (1 gzip, 2 zlib, 3 uncompressed, 4 LZ4, 127 custom; +128: the data is in the file c.<x>.<z>.mcc beside the
--- region) and the NBT payload. Every error names the file and the chunk. LZ4 (1.20.5+): see M.lz4_stream.
+-- region) and the NBT payload. Every error names the file and the chunk. LZ4 (1.20.5+): see M.lz4_stream; what
+-- one chunk may decompress to is bounded by M.MAX_CHUNK_BYTES.
 local torte = require "torte"
 local data = torte.data
 
@@ -26,6 +27,21 @@ local function bare(err)
 end
 M.bare_error = bare
 
+-- An error met while loading a chunk as the one line a user sees: "<file>: chunk (x, z) (...): <what>". The
+-- loader's own messages start so already; anything else (a binding's error, a Lua error of the decoder such as
+-- indexing a value of a type no check expected, an error of the caller's sink) gets the prefix, and a Lua error
+-- raised inside these modules keeps its module line at the end for a bug report.
+function M.chunk_error(err, where)
+  err = tostring(err)
+  if err:sub(1, #where) == where then return err end
+  local module, line, what = err:match("^%[torte%] ([%w._]+):(%d+): (.*)$")
+  if module then
+    if what:find("^torte%.") then return where .. ": " .. what end  -- a binding's error says which binding
+    return ("%s: %s (in %s:%s)"):format(where, what, module, line)
+  end
+  return where .. ": " .. err
+end
+
 -- Region coordinates from a file name "r.X.Z.mca" (nil if the name does not match).
 function M.coords(path)
   local x, z = path:match("r%.(%-?%d+)%.(%-?%d+)%.mca$")
@@ -33,9 +49,19 @@ function M.coords(path)
   return math.tointeger(tonumber(x)), math.tointeger(tonumber(z))
 end
 
+-- Minecraft's world border is 30 million blocks from the origin: 58594 regions.
+M.MAX_REGION = 58594
+-- The most a chunk may decompress to: real chunks take well under a few MB, so this only stops bombs.
+M.MAX_CHUNK_BYTES = 256 * 1024 * 1024
+
 function M.open(path)
+  if type(path) ~= "string" then error("minecraft.region.open expects a file name, got " .. type(path), 2) end
   local rx, rz = M.coords(path)
   if not rx then error(("%s: not a region file name (expected r.<X>.<Z>.mca)"):format(path), 0) end
+  if math.abs(rx) > M.MAX_REGION or math.abs(rz) > M.MAX_REGION then
+    error(("%s: region (%d, %d) lies beyond Minecraft's world border (|X|, |Z| <= %d)"):format(path, rx, rz,
+                                                                                             M.MAX_REGION), 0)
+  end
   local ok, bytes = pcall(data.read_file, path)
   if not ok then error(bare(bytes), 0) end
   if #bytes ~= 0 and #bytes < 8192 then
@@ -70,8 +96,9 @@ end
 -- bytes; errors say which block and byte and what is wrong.
 local LZ4_MAGIC = "LZ4Block"
 local LZ4_SEED = 0x9747b28c
-function M.lz4_stream(s)
-  local out, pos, n, block = {}, 1, #s, 0
+function M.lz4_stream(s, max_bytes)
+  max_bytes = max_bytes or M.MAX_CHUNK_BYTES
+  local out, pos, n, block, total = {}, 1, #s, 0, 0
   while true do
     block = block + 1
     local at = ("LZ4 block %d at byte %d"):format(block, pos - 1)
@@ -91,6 +118,10 @@ function M.lz4_stream(s)
                                                                                        1 << (10 + level)), 0)
     end
     pos = pos + 21
+    total = total + dlen
+    if total > max_bytes then
+      error(("%s: the stream decompresses to more than %d bytes (the limit for one chunk)"):format(at, max_bytes), 0)
+    end
     if dlen == 0 then  -- the end block
       if check ~= 0 then error(at .. ": corrupt end block (non-zero checksum)", 0) end
       if pos <= n then error(("%s: %d bytes of trailing data after the end block"):format(at, n - pos + 1), 0) end
@@ -178,8 +209,10 @@ function Region:payload(c)
     local ok, r = pcall(M.lz4_stream, payload)
     if not ok then fail(bare(r)) end
     raw = r
+  elseif compression == 127 then
+    fail("custom compression (type 127, Minecraft 1.20.5+ with a named algorithm) is not supported")
   else
-    fail(("unknown compression type %d"):format(compression))
+    fail(("unknown compression type %d (known: 1 gzip, 2 zlib, 3 none, 4 LZ4)"):format(compression))
   end
   return raw
 end

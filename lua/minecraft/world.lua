@@ -55,6 +55,33 @@ function M.region_files(dir)
   return files
 end
 
+-- The keys of a table in ascending order (numbers, or strings): pairs() order varies from run to run (Lua
+-- seeds string hashing per state), and ids and materials handed out while iterating must not.
+local function sorted_keys(t)
+  local keys = {}
+  for k in pairs(t) do keys[#keys + 1] = k end
+  table.sort(keys)
+  return keys
+end
+M.sorted_keys = sorted_keys
+
+-- What an NBT value decoded to, for messages ("palette entry 1 is a number, not a compound").
+local function nbt_type(v)
+  if type(v) == "userdata" then return "a long array" end
+  if type(v) == "table" then
+    if #v > 0 then return "a list" end
+    return next(v) == nil and "an empty list or compound" or "a compound"
+  end
+  if type(v) == "string" then return "a string or byte array" end
+  return "a " .. type(v)
+end
+
+-- A name from a chunk, safe for a one-line message (control bytes escaped).
+local function printable(name)
+  return (name:gsub("%c", function(ch) return ("\\x%02x"):format(ch:byte()) end))
+end
+M.printable = printable
+
 local function ceil_log2(n)
   local b = 0
   while (1 << b) < n do b = b + 1 end
@@ -101,9 +128,10 @@ local PACK4096 = "<" .. ("i2"):rep(4096)
 local function tint_voxels(ids, tintable, b, reg)
   local sel, present = biomes.selector(b)
   local maps = {}
-  for c in pairs(present) do
+  local tinted = sorted_keys(tintable)  -- reg:tinted hands out new ids: in a fixed order
+  for _, c in ipairs(sorted_keys(present)) do
     local m = {}
-    for id in pairs(tintable) do m[id] = reg:tinted(id, c) end
+    for _, id in ipairs(tinted) do m[id] = reg:tinted(id, c) end
     maps[biomes.INDEX[c]] = m
   end
   return data.map_int16(ids, maps, sel)
@@ -123,7 +151,7 @@ local function tint_section(ids, by_id, reg, biome_fn)
   if not b then return ids end
   if b.uniform then
     local remap = {}
-    for id in pairs(tintable) do remap[id] = reg:tinted(id, b.uniform) end
+    for _, id in ipairs(sorted_keys(tintable)) do remap[id] = reg:tinted(id, b.uniform) end
     return data.map_int16(ids, remap)
   end
   return tint_voxels(ids, tintable, b, reg)
@@ -132,16 +160,29 @@ end
 -- Decodes one section into (ids, non_air, counts_by_id); `reg` maps states to voxel ids; `biome_fn()` gives the
 -- section's biomes (minecraft.biomes.section), asked only when a block of the palette is tinted.
 -- Returns nil for sections without blocks (light-only).
+local MAX_PALETTE = 4096  -- one entry per block of the section at most
 local function palette_section(palette, states, dv, reg, where, biome_fn)
+  if type(palette) ~= "table" then error(where .. ": the palette is not a list", 0) end
   local n = #palette
   if n == 0 then return nil end
+  if n > MAX_PALETTE then
+    error(("%s: the palette has %d entries (a section holds %d blocks)"):format(where, n, MAX_PALETTE), 0)
+  end
   local map, air = {}, {}
   local tinted, tint_kind = nil, reg.tint_kind
   for i = 1, n do
     local e = palette[i]
+    if type(e) ~= "table" then
+      error(("%s: palette entry %d is %s, not a compound"):format(where, i, nbt_type(e)), 0)
+    end
     local name = e.Name
     if type(name) ~= "string" then error(where .. ": palette entry " .. i .. " has no Name", 0) end
-    local id = reg:state(name, e.Properties)
+    local props = e.Properties
+    if props ~= nil and type(props) ~= "table" then
+      error(("%s: palette entry %d (%s): Properties is %s, not a compound"):format(where, i, printable(name),
+                                                                                   nbt_type(props)), 0)
+    end
+    local id = reg:state(name, props)
     map[i] = id
     air[i] = blocks.AIR[name] or false
     if tint_kind[id] then
@@ -164,13 +205,15 @@ local function palette_section(palette, states, dv, reg, where, biome_fn)
     if per_voxel then ids = tint_voxels(ids, {[map[1]] = true}, per_voxel, reg) end
     return ids, air[1] and 0 or 4096, {[map[1]] = 4096}, map, nil
   end
-  if type(states) ~= "userdata" then error(where .. ": block data is not a long array", 0) end
+  if type(states) ~= "userdata" then
+    error(("%s: the block data is %s, not a long array"):format(where, nbt_type(states)), 0)
+  end
   local bits = math.max(4, ceil_log2(n))
   local padded = dv >= SPANNING_BEFORE
   local ok, ids, counts = pcall(data.unpack_bits, states, bits, 4096, padded, map)
   if not ok then error(where .. ": " .. region.bare_error(ids), 0) end
   local non_air, by_id = 0, {}
-  for i, c in pairs(counts) do
+  for i, c in ipairs(counts) do  -- counts[i]: voxels using palette entry i
     if c > 0 then
       if i > n then error(where .. (": block index %d is outside the palette of %d"):format(i - 1, n), 0) end
       if not air[i] then non_air = non_air + c end
@@ -229,7 +272,7 @@ local function deliver(opt, stats, cx, cy, cz, ids, non_air, by_id)
   -- emitters: positions of blocks whose id emits
   local reg = opt.registry
   if opt.emitters then
-    for id in pairs(by_id) do
+    for _, id in ipairs(sorted_keys(by_id)) do  -- in id order: the list is capped at max_emitters
       if id ~= 0 and reg:emission(id) and #stats.emitters < (opt.max_emitters or 4096) then
         local init = 1
         local pat = string.pack("<i2", id)
@@ -259,15 +302,19 @@ local function deliver(opt, stats, cx, cy, cz, ids, non_air, by_id)
   if opt.sink then opt.sink(cx, cy, cz, ids, non_air) end
 end
 
--- Loads one chunk's root compound; updates stats, calls the sink. Errors name `where`.
+-- Loads one chunk's root compound; updates stats, calls the sink. Errors name `where`. Every section is decoded
+-- before anything is counted or handed on, so a chunk that fails (and is skipped) leaves no trace but its error.
 local function load_chunk(root, c, opt, stats, where)
   local reg = opt.registry
   local dv = root.DataVersion
   if dv ~= nil and math.type(dv) ~= "integer" then error(where .. ": DataVersion is not an integer", 0) end
   dv = dv or 0
   local level = root.Level
-  local status, sections, format
-  if type(level) == "table" then
+  local status, sections
+  if level ~= nil and type(level) ~= "table" then
+    error(("%s: Level is %s, not a compound"):format(where, nbt_type(level)), 0)
+  end
+  if level then
     status = level.Status
     sections = level.Sections
     if status == nil then status = "full" end  -- pre-1.13: no status
@@ -276,21 +323,31 @@ local function load_chunk(root, c, opt, stats, where)
     status = root.Status
     sections = root.sections
   end
-  stats.data_versions[dv] = (stats.data_versions[dv] or 0) + 1
-  stats.statuses[tostring(status)] = (stats.statuses[tostring(status)] or 0) + 1
+  local function count_version()
+    stats.data_versions[dv] = (stats.data_versions[dv] or 0) + 1
+    stats.statuses[tostring(status)] = (stats.statuses[tostring(status)] or 0) + 1
+  end
   if not M.FULL_STATUS[status] then
+    count_version()
     stats.not_full = stats.not_full + 1
     return
   end
-  stats.full = stats.full + 1
-  if sections == nil then return end
-  if type(sections) ~= "table" then error(where .. ": the section list is not a list", 0) end
-  local cx, cz = level.xPos, level.zPos
-  if math.type(cx) ~= "integer" or math.type(cz) ~= "integer" then cx, cz = c.x, c.z end
-  for si = 1, #sections do
+  if sections ~= nil and type(sections) ~= "table" then
+    error(("%s: the section list is %s, not a list"):format(where, nbt_type(sections)), 0)
+  end
+  -- The chunk is where the region header puts it (as in Minecraft): a wrong xPos/zPos cannot move it.
+  local cx, cz = c.x, c.z
+  local decoded = {}
+  for si = 1, sections and #sections or 0 do
     local sec = sections[si]
+    if type(sec) ~= "table" then
+      error(("%s: section %d is %s, not a compound"):format(where, si, nbt_type(sec)), 0)
+    end
     local cy = sec.Y
     if math.type(cy) ~= "integer" then error(("%s: section %d has no Y"):format(where, si), 0) end
+    if cy < -128 or cy > 127 then  -- a byte in every format
+      error(("%s: section %d has Y=%d, outside -128..127"):format(where, si, cy), 0)
+    end
     local swhere = ("%s, section Y=%d"):format(where, cy)
     local ids, non_air, by_id, map, packed
     local kind
@@ -309,48 +366,54 @@ local function load_chunk(root, c, opt, stats, where)
       kind = "Level/Blocks"
     end
     if ids then
-      format = kind
-      stats.sections = stats.sections + 1
-      stats.non_air = stats.non_air + non_air
-      for id, n in pairs(by_id) do reg:count_unknown(id, n) end
-      local ox, oy, oz = cx * 16, cy * 16, cz * 16
-      -- probes
-      if opt.probes then
-        for pi, p in ipairs(opt.probes) do
-          if p[1] // 16 == cx and p[2] // 16 == cy and p[3] // 16 == cz then
-            local i = ((p[2] & 15) << 8) | ((p[3] & 15) << 4) | (p[1] & 15)
-            if sec.Blocks ~= nil and sec.block_states == nil and sec.Palette == nil then
-              stats.probes[pi] = raw_legacy(sec, i)
-            else
-              local palette = sec.block_states and sec.block_states.palette or sec.Palette
-              local index = 0
-              if packed then
-                local raw = data.unpack_bits(packed[1], packed[2], 4096, packed[3])
-                index = string.unpack("<i2", raw, 2 * i + 1)
-              end
-              stats.probes[pi] = palette[index + 1].Name
-            end
-            stats.probe_biomes[pi] = biomes.at(biome_fn(), p[1] & 15, p[2] & 15, p[3] & 15)
-          end
-        end
-      end
-      if kind == "Level/Blocks" then
-        local key = cx .. "," .. cy .. "," .. cz
-        -- Pre-1.13 block states carry no connections: fences, walls and panes are joined to their neighbours once
-        -- every section is loaded (M.connect_legacy); until then the loader keeps every legacy section.
-        local legacy = stats.legacy_sections
-        legacy[key] = ids
-        local family = reg.family
-        for id in pairs(by_id) do
-          if family[id] then
-            stats.pending[#stats.pending + 1] = {cx, cy, cz, non_air, by_id}
-            ids = nil
-            break
-          end
-        end
-      end
-      if ids then deliver(opt, stats, cx, cy, cz, ids, non_air, by_id) end
+      decoded[#decoded + 1] = {sec = sec, cy = cy, ids = ids, non_air = non_air, by_id = by_id, packed = packed,
+                               kind = kind, biome_fn = biome_fn}
     end
+  end
+  count_version()
+  stats.full = stats.full + 1
+  local format
+  for _, d in ipairs(decoded) do
+    local sec, cy, ids, non_air, by_id, packed, kind = d.sec, d.cy, d.ids, d.non_air, d.by_id, d.packed, d.kind
+    format = kind
+    stats.sections = stats.sections + 1
+    stats.non_air = stats.non_air + non_air
+    for id, n in pairs(by_id) do reg:count_unknown(id, n) end
+    if opt.probes then
+      for pi, p in ipairs(opt.probes) do
+        if p[1] // 16 == cx and p[2] // 16 == cy and p[3] // 16 == cz then
+          local i = ((p[2] & 15) << 8) | ((p[3] & 15) << 4) | (p[1] & 15)
+          if kind == "Level/Blocks" then
+            stats.probes[pi] = raw_legacy(sec, i)
+          else
+            local palette = sec.block_states and sec.block_states.palette or sec.Palette
+            local index = 0
+            if packed then
+              local raw = data.unpack_bits(packed[1], packed[2], 4096, packed[3])
+              index = string.unpack("<i2", raw, 2 * i + 1)
+            end
+            stats.probes[pi] = palette[index + 1].Name
+          end
+          stats.probe_biomes[pi] = biomes.at(d.biome_fn(), p[1] & 15, p[2] & 15, p[3] & 15)
+        end
+      end
+    end
+    if kind == "Level/Blocks" then
+      local key = cx .. "," .. cy .. "," .. cz
+      -- Pre-1.13 block states carry no connections: fences, walls and panes are joined to their neighbours once
+      -- every section is loaded (M.connect_section); until then the loader keeps every legacy section.
+      local legacy = stats.legacy_sections
+      legacy[key] = ids
+      local family = reg.family
+      for id in pairs(by_id) do
+        if family[id] then
+          stats.pending[#stats.pending + 1] = {cx, cy, cz, non_air, by_id}
+          ids = nil
+          break
+        end
+      end
+    end
+    if ids then deliver(opt, stats, cx, cy, cz, ids, non_air, by_id) end
   end
   if format then stats.formats[format] = (stats.formats[format] or 0) + 1 end
 end
@@ -423,7 +486,7 @@ function M.water_surfaces(sections, water)
     water = {[water] = true}
   end
   local pats = {}
-  for id in pairs(water) do
+  for _, id in ipairs(sorted_keys(water)) do
     if id ~= 0 then pats[#pats + 1] = string.pack("<i2", id) end
   end
   if #pats == 0 then return 0, {} end
@@ -466,10 +529,25 @@ end
 
 function M.load(opt)
   local t0 = torte.clock()
+  if type(opt) ~= "table" then error("minecraft.world.load expects a table of options", 2) end
   opt.registry = opt.registry or blocks.registry()
-  local files = opt.files or M.region_files(assert(opt.dir, "minecraft.world.load: 'dir' or 'files' is required"))
-  if #files == 0 then error(("minecraft.world.load: no region files (r.X.Z.mca) in '%s' or its region/ folder"):format(
-    opt.dir), 0) end
+  if opt.files == nil and type(opt.dir) ~= "string" then
+    error("minecraft.world.load: 'dir' (a folder name) or 'files' is required", 2)
+  end
+  local files = opt.files
+  if files ~= nil then
+    if type(files) ~= "table" or #files == 0 then
+      error("minecraft.world.load: 'files' must be a non-empty list of region file names", 2)
+    end
+    for i, f in ipairs(files) do
+      if type(f) ~= "string" then error(("minecraft.world.load: files[%d] is not a file name"):format(i), 2) end
+    end
+  else
+    files = M.region_files(opt.dir)
+    if #files == 0 then
+      error(("minecraft.world.load: no region files (r.X.Z.mca) in '%s' or its region/ folder"):format(opt.dir), 2)
+    end
+  end
   local stats = {files = #files, chunks = 0, full = 0, not_full = 0, bad = 0, bad_messages = {}, sections = 0,
                  non_air = 0, data_versions = {}, statuses = {}, formats = {}, probes = {}, probe_biomes = {}, emitters = {},
                  pending = {}, legacy_sections = {},
@@ -499,9 +577,10 @@ function M.load(opt)
         load_chunk(root, c, opt, stats, r:where(c))
       end)
       if not ok then
-        if not opt.skip_bad_chunks then error(region.bare_error(err), 0) end
+        err = region.chunk_error(err, r:where(c))
+        if not opt.skip_bad_chunks then error(err, 0) end
         stats.bad = stats.bad + 1
-        stats.bad_messages[#stats.bad_messages + 1] = region.bare_error(err)
+        stats.bad_messages[#stats.bad_messages + 1] = err
       end
       done = done + 1
       if show then

@@ -13,7 +13,12 @@ end
 function torte.options(defaults)
   local out = {}
   for k, v in pairs(defaults) do out[k] = v end
-  for k, v in pairs(torte.args) do
+  -- In key order, so that of several bad arguments the same one is reported on every run.
+  local names = {}
+  for k in pairs(torte.args) do names[#names + 1] = k end
+  table.sort(names, function(a, b) return tostring(a) < tostring(b) end)
+  for _, k in ipairs(names) do
+    local v = torte.args[k]
     local default = defaults[k]
     if default == nil then
       error(("unknown argument '%s' (this scene accepts: %s)"):format(k, table.concat(sorted_keys(defaults), ", ")), 2)

@@ -1,0 +1,7 @@
+-- A chunk whose length field is 0.
+-- expect: chunk length is 0
+-- where: r\.0\.0\.mca: chunk \(0, 0\) \(entry 0,0 of the region\)
+-- args: lib=$CASE/mc_region.lib
+local W = dofile(torte.args.lib)
+W.region("r.0.0.mca", {{0, 0, W.chunk(0, 0), length = 0}})
+require("minecraft.world").load{dir = "."}

@@ -1,0 +1,7 @@
+-- A header entry pointing at sector 50 of a file of 3 sectors.
+-- expect: starts at byte 204800 but the file has only 12288 bytes
+-- where: r\.0\.0\.mca: chunk \(0, 0\) \(entry 0,0 of the region\)
+-- args: lib=$CASE/mc_region.lib
+local W = dofile(torte.args.lib)
+W.region("r.0.0.mca", {{0, 0, W.chunk(0, 0), location = (50 << 8) | 1}})
+require("minecraft.world").load{dir = "."}
