@@ -1,11 +1,13 @@
 // torte.scene() and its methods, torte.render{...}, torte.filter.* and the image returned by render.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <mutex>
 #include <thread>
 
+#include "core/interrupt.h"
 #include "film/image_io.h"
 #include "progress.h"
 #include "types.h"
@@ -95,6 +97,8 @@ int l_instance(lua_State* L) {
   inst->group = kw.object<SceneBuilder>("group");
   inst->transform = kw.transform("transform");
   kw.finish();
+  const float det = inst->transform.determinant3();
+  if (!(std::fabs(det) > 0) || !std::isfinite(det)) kw.fail("transform", "is singular or not finite");
   push_object(L, std::move(inst));
   return 1;
 }
@@ -247,9 +251,21 @@ int l_render(lua_State* L) {
   if (ctx.interrupted) throw Error("torte.render: not started, the run was interrupted");
 
   const auto t0 = std::chrono::steady_clock::now();
-  std::shared_ptr<Scene> flat = build_scene(*scene, ctx.quiet);
+  std::shared_ptr<Scene> flat;
+  try {
+    flat = build_scene(*scene, ctx.quiet);
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const Error& e) {
+    throw Error(std::string("torte.render: ") + e.what());  // the shape, light or group named comes after
+  }
   flat->camera = *camera;
   flat->has_camera = true;
+  if (const std::string why = black_image_reason(*flat); !why.empty()) {
+    luaL_where(L, 1);
+    std::fprintf(stderr, "torte: warning: %storte.render: %s\n", lua_tostring(L, -1), why.c_str());
+    lua_pop(L, 1);
+  }
   const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   ConsoleProgress progress("render");
