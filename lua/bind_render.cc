@@ -60,8 +60,11 @@ int l_scene(lua_State* L) {
   return 1;
 }
 
+// Arrays given to scene:add nest at most this deep (a table that contains itself would never end).
+constexpr int kMaxAddNesting = 16;
+
 // scene:add(obj, ...): shapes, lights and instances (several at once, or arrays of them).
-void add_one(lua_State* L, SceneBuilder& scene, int idx) {
+void add_one(lua_State* L, SceneBuilder& scene, int idx, int depth = 0) {
   if (auto shape = to_object<ShapeDesc>(L, idx)) {
     scene.add_shape(*shape);
   } else if (auto light = to_object<Light>(L, idx)) {
@@ -73,10 +76,14 @@ void add_one(lua_State* L, SceneBuilder& scene, int idx) {
     throw Error("scene:add: place a group with torte.instance{group = g, transform = ...} (or build it with "
                 "scene:frame)");
   } else if (lua_istable(L, idx) && !lua_getmetatable(L, idx)) {
+    if (depth >= kMaxAddNesting)
+      throw Error("scene:add: arrays nest more than " + std::to_string(kMaxAddNesting) +
+                  " levels deep (does an array contain itself?)");
+    luaL_checkstack(L, 2, "scene:add");
     const lua_Integer n = lua_Integer(lua_rawlen(L, idx));
     for (lua_Integer i = 1; i <= n; ++i) {
       lua_rawgeti(L, idx, i);
-      add_one(L, scene, lua_gettop(L));
+      add_one(L, scene, lua_gettop(L), depth + 1);
       lua_pop(L, 1);
     }
   } else {

@@ -505,3 +505,21 @@ TEST_CASE("an interrupt during a long scene build stops it early", "[robustness]
   CHECK(interrupted);
   CHECK(progress.done.load() < progress.total.load());  // stopped before the end
 }
+
+TEST_CASE("a chain of 300,000 groups is refused by flatten and released without deep recursion",
+          "[robustness][instancing]") {
+  auto g = std::make_shared<SceneBuilder>();
+  g->add_shape(sphere_shape(1, Transform(), matte(0.5f)));
+  for (int i = 0; i < 300000; ++i) {
+    auto up = std::make_shared<SceneBuilder>();
+    up->add_instance({g, Transform()});
+    g = up;
+  }
+  {
+    SceneBuilder scene;
+    scene.add_instance({g, Transform()});
+    CHECK_THROWS_WITH(scene.flatten(), Catch::Contains("nest more than 32 levels"));
+  }
+  g.reset();  // one destructor per level overflowed the stack here
+  SUCCEED("released");
+}

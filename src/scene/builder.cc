@@ -312,6 +312,24 @@ struct SceneBuilder::Flattening {
   }
 };
 
+SceneBuilder::~SceneBuilder() {
+  // Groups this one alone keeps alive hand their instances to the work list before they die, so each dies with
+  // no instances left and no destructor recurses.
+  std::vector<std::shared_ptr<const SceneBuilder>> pending;
+  for (InstanceDesc& inst : instances_) pending.push_back(std::move(inst.group));
+  instances_.clear();
+  while (!pending.empty()) {
+    std::shared_ptr<const SceneBuilder> g = std::move(pending.back());
+    pending.pop_back();
+    if (g && g.use_count() == 1) {
+      // The last owner: nothing else can see the group any more, so emptying it is safe.
+      auto& inner = const_cast<SceneBuilder&>(*g).instances_;
+      for (InstanceDesc& inst : inner) pending.push_back(std::move(inst.group));
+      inner.clear();
+    }
+  }
+}
+
 std::shared_ptr<Scene> SceneBuilder::flatten(ProgressCounter* progress) const {
   auto scene = std::make_shared<Scene>();
   Flattening f(*scene);

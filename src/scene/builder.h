@@ -39,6 +39,15 @@ struct InstanceDesc {
 // kMaxInstancedLights lights; flatten() counts them before it allocates anything.
 class SceneBuilder {
  public:
+  SceneBuilder() = default;
+  SceneBuilder(const SceneBuilder&) = default;
+  SceneBuilder& operator=(const SceneBuilder&) = default;
+  SceneBuilder(SceneBuilder&&) = default;
+  SceneBuilder& operator=(SceneBuilder&&) = default;
+  // Releases chains of groups iteratively: a script can nest groups arbitrarily deep (flatten refuses them, the
+  // destructor must still not recurse once per level).
+  ~SceneBuilder();
+
   static constexpr int kMaxGroupNesting = 32;
   static constexpr uint64_t kMaxInstances = uint64_t(1) << 28;
   static constexpr uint64_t kMaxInstancedLights = uint64_t(1) << 20;
