@@ -523,3 +523,28 @@ TEST_CASE("a chain of 300,000 groups is refused by flatten and released without 
   g.reset();  // one destructor per level overflowed the stack here
   SUCCEED("released");
 }
+
+TEST_CASE("noise and checkers stay defined at coordinates far beyond the int range", "[robustness][texture]") {
+  // Converting such floats to integers directly is undefined behaviour (the sanitizer build reports it).
+  for (float x : {3e9f, -5e12f, 1e18f, 1e30f}) {
+    NoiseParams p;
+    const float n3 = noise_texture(p, Vec3f(x, 0.5f, -x));
+    p.dims = 2;
+    p.fractal = NoiseFractal::Fbm;
+    const float n2 = noise_texture(p, Vec3f(x, x, 0));
+    CHECK((n3 >= 0 && n3 <= 1));
+    CHECK((n2 >= 0 && n2 <= 1));
+  }
+  // Not finite: NaN out, but no undefined conversion on the way.
+  CHECK(std::isnan(noise_texture(NoiseParams{}, Vec3f(INFINITY, std::nanf(""), 0))));
+  TextureTableBuilder builder;
+  const TexturePtr checker3 = texture::checker(texture::constant(0.25f), texture::constant(0.75f), 3, 10);
+  const ColorParam c = builder.add(ColorInput{Rgb(), checker3});
+  const TextureTable table = builder.finish();
+  for (float x : {1e18f, 3e30f, -1e38f}) {
+    TextureContext ctx{};
+    ctx.p = Vec3f(x, 0.5f, 0.5f);
+    const float v = table.eval(c, ctx).r;
+    CHECK((v == 0.25f || v == 0.75f));
+  }
+}
