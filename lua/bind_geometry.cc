@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "geometry/mesh.h"
+#include "origin.h"
 #include "types.h"
 
 namespace torte::lua {
@@ -11,10 +12,19 @@ namespace {
 
 void push_transform(lua_State* L, const Transform& t);
 
+bool is_finite_transform(const Transform& t) {
+  for (const auto& row : t.matrix().m)
+    for (float v : row)
+      if (!std::isfinite(v)) return false;
+  return true;
+}
+
 int transform_mul(lua_State* L) {
   auto a = to_object<Transform>(L, 1), b = to_object<Transform>(L, 2);
   if (!a || !b) throw Error("only two transforms can be multiplied");
-  push_transform(L, *a * *b);
+  const Transform t = *a * *b;
+  if (!is_finite_transform(t)) throw Error("the product of the two transforms is not finite (it overflows float)");
+  push_transform(L, t);
   return 1;
 }
 
@@ -107,11 +117,14 @@ int l_matrix(lua_State* L) {  // 16 numbers, row-major
 // Keys every shape accepts: transform, material, emission, two_sided.
 ShapeDesc common_shape(KwArgs& kw) {
   ShapeDesc s;
+  s.origin = made_at(kw.state(), kw.function());
   s.transform = kw.transform("transform");
   s.material = kw.object<MaterialDesc>("material", true);
   s.emission = kw.rgb("emission", Rgb(0));
   s.two_sided = kw.boolean("two_sided", false);
-  if (std::fabs(s.transform.determinant3()) < 1e-20f) kw.fail("transform", "is singular");
+  const float det = s.transform.determinant3();
+  if (!(std::fabs(det) >= 1e-20f) || !std::isfinite(det)) kw.fail("transform", "is singular or not finite");
+  if (s.emission.max_component() > kMaxEmission) kw.fail("emission", "must be at most 1e20 per channel");
   return s;
 }
 
@@ -132,6 +145,11 @@ int make_quadric(lua_State* L, const char* fn, QuadricKind kind) {
   } catch (const Error& e) {
     throw Error(std::string(fn) + ": " + e.what());
   }
+  Quadric placed = s.quadric;
+  placed.to_world = s.transform;
+  const Bounds3f b = world_bounds(placed);
+  if (!in_coordinate_range(b.lo) || !in_coordinate_range(b.hi))
+    kw.fail("radius", "and the transform place the shape beyond +-1e18, the range the scene supports");
   push_object(L, std::make_shared<ShapeDesc>(std::move(s)));
   return 1;
 }
@@ -209,6 +227,7 @@ int l_mesh(lua_State* L) {
     if (n.size() != pos.size()) kw.fail("normals", "must hold one normal per vertex");
     for (size_t i = 0; i < n.size(); i += 3) {
       Vec3f v{float(n[i]), float(n[i + 1]), float(n[i + 2])};
+      if (!is_finite(v)) kw.fail("normals", "entry " + std::to_string(i / 3 + 1) + " is not finite");
       if (!(length_squared(v) > 0)) kw.fail("normals", "must be non-zero");
       v = normalize(v);
       mesh.nx.push_back(v.x); mesh.ny.push_back(v.y); mesh.nz.push_back(v.z);

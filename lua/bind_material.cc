@@ -12,6 +12,16 @@ namespace torte::lua {
 
 namespace {
 
+// make_mix/make_bump, their nesting error prefixed by the function's name.
+template <class Make>
+std::shared_ptr<MaterialDesc> nested(const KwArgs& kw, Make&& make) {
+  try {
+    return make();
+  } catch (const Error& e) {
+    throw Error(kw.function() + ": " + e.what());
+  }
+}
+
 std::shared_ptr<MaterialDesc> new_material(MaterialType type) {
   auto m = std::make_shared<MaterialDesc>();
   m->type = type;
@@ -151,25 +161,23 @@ int l_rough_glass(lua_State* L) {
 
 int l_mix(lua_State* L) {
   KwArgs kw(L, 1, "torte.material.mix");
-  auto m = new_material(MaterialType::Mix);
-  m->a = kw.object<MaterialDesc>("a");
-  m->b = kw.object<MaterialDesc>("b");
-  m->amount = float_input(kw, "amount", 0.5f);
+  auto a = kw.object<MaterialDesc>("a");
+  auto b = kw.object<MaterialDesc>("b");
+  FloatInput amount = float_input(kw, "amount", 0.5f);
   kw.finish();
-  if (!m->amount.texture && !(m->amount.value >= 0 && m->amount.value <= 1)) kw.fail("amount", "must be in [0, 1]");
-  push_object(L, std::move(m));
+  if (!amount.texture && !(amount.value >= 0 && amount.value <= 1)) kw.fail("amount", "must be in [0, 1]");
+  push_object(L, nested(kw, [&] { return make_mix(std::move(a), std::move(b), std::move(amount)); }));
   return 1;
 }
 
 int l_bump(lua_State* L) {
   KwArgs kw(L, 1, "torte.material.bump");
-  auto m = new_material(MaterialType::Bump);
-  m->a = kw.object<MaterialDesc>("material");
-  m->height = float_input(kw, "height", 0);
-  m->bump_scale = float(kw.number("scale", 1));
+  auto inner = kw.object<MaterialDesc>("material");
+  FloatInput height = float_input(kw, "height", 0);
+  const float scale = float(kw.number("scale", 1));
   kw.finish();
-  if (!std::isfinite(m->bump_scale)) kw.fail("scale", "must be finite");
-  push_object(L, std::move(m));
+  if (!std::isfinite(scale)) kw.fail("scale", "must be finite");
+  push_object(L, nested(kw, [&] { return make_bump(std::move(inner), std::move(height), scale); }));
   return 1;
 }
 

@@ -1,9 +1,12 @@
 // torte.light.* and torte.camera.* constructors (materials: bind_material.cc).
+#include <algorithm>
 #include <cmath>
 
 #include "film/image_io.h"
+#include "geometry/mesh.h"
 #include "light/environment.h"
 #include "light/sky.h"
+#include "origin.h"
 #include "types.h"
 
 namespace torte::lua {
@@ -12,8 +15,18 @@ namespace {
 
 constexpr float kDegrees = kPi / 180;
 
+// An emitted quantity: finite, non-negative and at most kMaxEmission per channel.
 void check_non_negative(KwArgs& kw, const char* key, Rgb c) {
   if (!c.is_finite() || c.r < 0 || c.g < 0 || c.b < 0) kw.fail(key, "must be finite and non-negative");
+  if (c.max_component() > kMaxEmission) kw.fail(key, "must be at most 1e20 per channel");
+}
+
+// A light made by a binding, remembering where the script made it.
+std::shared_ptr<Light> new_light(KwArgs& kw, LightKind kind) {
+  auto l = std::make_shared<Light>();
+  l->kind = kind;
+  l->origin = made_at(kw.state(), kw.function());
+  return l;
 }
 
 Vec3f unit_direction(KwArgs& kw, const char* key, Vec3f v) {
@@ -24,11 +37,11 @@ Vec3f unit_direction(KwArgs& kw, const char* key, Vec3f v) {
 
 int l_point(lua_State* L) {
   KwArgs kw(L, 1, "torte.light.point");
-  auto l = std::make_shared<Light>();
-  l->kind = LightKind::Point;
+  auto l = new_light(kw, LightKind::Point);
   l->position = kw.vec3("position");
   l->radiance = kw.rgb("intensity", Rgb(1));
   kw.finish();
+  if (!in_coordinate_range(l->position)) kw.fail("position", "must lie within +-1e18");
   check_non_negative(kw, "intensity", l->radiance);
   push_object(L, std::move(l));
   return 1;
@@ -36,8 +49,7 @@ int l_point(lua_State* L) {
 
 int l_infinite(lua_State* L) {
   KwArgs kw(L, 1, "torte.light.infinite");
-  auto l = std::make_shared<Light>();
-  l->kind = LightKind::Infinite;
+  auto l = new_light(kw, LightKind::Infinite);
   l->radiance = kw.rgb("radiance", Rgb(1));
   kw.finish();
   check_non_negative(kw, "radiance", l->radiance);
@@ -47,8 +59,7 @@ int l_infinite(lua_State* L) {
 
 int l_spot(lua_State* L) {
   KwArgs kw(L, 1, "torte.light.spot");
-  auto l = std::make_shared<Light>();
-  l->kind = LightKind::Spot;
+  auto l = new_light(kw, LightKind::Spot);
   l->position = kw.vec3("position");
   if (kw.has("look_at") && kw.has("direction")) kw.fail("look_at", "cannot be combined with 'direction'");
   if (kw.has("look_at")) {
@@ -64,6 +75,7 @@ int l_spot(lua_State* L) {
   const double falloff = kw.number("falloff", std::max(0.0, angle - 5));
   kw.finish();
   check_non_negative(kw, "intensity", l->radiance);
+  if (!in_coordinate_range(l->position)) kw.fail("position", "must lie within +-1e18");
   if (!(angle > 0 && angle <= 180)) kw.fail("angle", "must be in (0, 180] degrees (the cone's half angle)");
   if (!(falloff >= 0 && falloff <= angle)) kw.fail("falloff", "must be in [0, angle] degrees");
   l->cos_total = std::cos(float(angle) * kDegrees);
@@ -74,8 +86,7 @@ int l_spot(lua_State* L) {
 
 int l_directional(lua_State* L) {
   KwArgs kw(L, 1, "torte.light.directional");
-  auto l = std::make_shared<Light>();
-  l->kind = LightKind::Distant;
+  auto l = new_light(kw, LightKind::Distant);
   l->direction = unit_direction(kw, "direction", kw.vec3("direction"));
   if (kw.has("irradiance") && kw.has("radiance")) kw.fail("radiance", "cannot be combined with 'irradiance'");
   const char* key = kw.has("radiance") ? "radiance" : "irradiance";
@@ -95,8 +106,7 @@ int l_environment(lua_State* L) {
   kw.finish();
   check_non_negative(kw, "scale", scale);
   if (!is_similarity(to_world)) kw.fail("transform", "must be a rotation");
-  auto l = std::make_shared<Light>();
-  l->kind = LightKind::Environment;
+  auto l = new_light(kw, LightKind::Environment);
   try {
     l->environment = make_environment_map(read_image(file), to_world, scale);
   } catch (const Error& e) {
@@ -133,8 +143,7 @@ int l_sky(lua_State* L) {
   if (!(p.turbidity >= 1.7f && p.turbidity <= 10)) kw.fail("turbidity", "must be in [1.7, 10]");
   if (!(p.scale > 0) || !std::isfinite(p.scale)) kw.fail("scale", "must be positive");
   if (!(p.sun_radius_degrees > 0 && p.sun_radius_degrees < 45)) kw.fail("sun_radius", "must be in (0, 45) degrees");
-  auto l = std::make_shared<Light>();
-  l->kind = LightKind::Sky;
+  auto l = new_light(kw, LightKind::Sky);
   try {
     l->sky = make_sky(p);
   } catch (const Error& e) {
@@ -157,15 +166,33 @@ FovAxis fov_axis(KwArgs& kw) {
 Transform camera_placement(KwArgs& kw, float* target_distance) {
   *target_distance = 0;
   if (kw.has("transform")) {
-    if (kw.has("eye") || kw.has("look_at")) kw.fail("transform", "cannot be combined with eye/look_at");
-    return kw.transform("transform");
+    if (kw.has("eye") || kw.has("look_at") || kw.has("up"))
+      kw.fail("transform", "cannot be combined with eye/look_at/up");
+    const Transform t = kw.transform("transform");
+    const float det = t.determinant3();
+    if (!(std::fabs(det) > 1e-30f) || !std::isfinite(det)) kw.fail("transform", "is singular (a camera needs all three axes)");
+    if (!in_coordinate_range(t.apply_point(Vec3f(0, 0, 0))))
+      kw.fail("transform", "places the camera beyond +-1e18");
+    return t;
   }
   const Vec3f eye = kw.vec3("eye", Vec3f(0, 0, 0));
   const Vec3f target = kw.vec3("look_at", Vec3f(0, 0, 1));
-  *target_distance = length(target - eye);
   const Vec3f up = kw.vec3("up", Vec3f(0, 1, 0));
+  if (!in_coordinate_range(eye)) kw.fail("eye", "must lie within +-1e18");
+  if (!in_coordinate_range(target)) kw.fail("look_at", "must lie within +-1e18");
+  const Vec3f view = target - eye;
+  if (!(length_squared(view) > 0)) kw.fail("look_at", "must differ from 'eye' (there is no viewing direction)");
+  // Scaled by the largest component first, so tiny and huge vectors normalize without underflow or overflow.
+  auto unit = [](Vec3f v) {
+    const float m = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+    return m > 0 ? normalize(v / m) : Vec3f();
+  };
+  if (!(length_squared(unit(up)) > 0)) kw.fail("up", "must be a non-zero vector");
+  if (!(length_squared(cross(unit(up), unit(view))) >= 1e-12f))
+    kw.fail("up", "must not be parallel to the viewing direction (look_at - eye)");
+  *target_distance = length(view);
   try {
-    return look_at(eye, target, up);
+    return look_at(eye, target, unit(up));
   } catch (const Error& e) {
     throw Error(kw.function() + ": " + e.what());
   }
@@ -208,7 +235,7 @@ int l_orthographic(lua_State* L) {
   c->extent = float(kw.number("extent", 2));
   c->fov_axis = fov_axis(kw);
   kw.finish();
-  if (!(c->extent > 0)) kw.fail("extent", "must be positive");
+  if (!(c->extent > 0) || !std::isfinite(c->extent)) kw.fail("extent", "must be positive");
   push_object(L, std::move(c));
   return 1;
 }

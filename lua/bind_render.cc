@@ -1,11 +1,13 @@
 // torte.scene() and its methods, torte.render{...}, torte.filter.* and the image returned by render.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <mutex>
 #include <thread>
 
+#include "core/interrupt.h"
 #include "film/image_io.h"
 #include "progress.h"
 #include "types.h"
@@ -58,8 +60,11 @@ int l_scene(lua_State* L) {
   return 1;
 }
 
+// Arrays given to scene:add nest at most this deep (a table that contains itself would never end).
+constexpr int kMaxAddNesting = 16;
+
 // scene:add(obj, ...): shapes, lights and instances (several at once, or arrays of them).
-void add_one(lua_State* L, SceneBuilder& scene, int idx) {
+void add_one(lua_State* L, SceneBuilder& scene, int idx, int depth = 0) {
   if (auto shape = to_object<ShapeDesc>(L, idx)) {
     scene.add_shape(*shape);
   } else if (auto light = to_object<Light>(L, idx)) {
@@ -71,10 +76,14 @@ void add_one(lua_State* L, SceneBuilder& scene, int idx) {
     throw Error("scene:add: place a group with torte.instance{group = g, transform = ...} (or build it with "
                 "scene:frame)");
   } else if (lua_istable(L, idx) && !lua_getmetatable(L, idx)) {
+    if (depth >= kMaxAddNesting)
+      throw Error("scene:add: arrays nest more than " + std::to_string(kMaxAddNesting) +
+                  " levels deep (does an array contain itself?)");
+    luaL_checkstack(L, 2, "scene:add");
     const lua_Integer n = lua_Integer(lua_rawlen(L, idx));
     for (lua_Integer i = 1; i <= n; ++i) {
       lua_rawgeti(L, idx, i);
-      add_one(L, scene, lua_gettop(L));
+      add_one(L, scene, lua_gettop(L), depth + 1);
       lua_pop(L, 1);
     }
   } else {
@@ -95,6 +104,8 @@ int l_instance(lua_State* L) {
   inst->group = kw.object<SceneBuilder>("group");
   inst->transform = kw.transform("transform");
   kw.finish();
+  const float det = inst->transform.determinant3();
+  if (!(std::fabs(det) > 0) || !std::isfinite(det)) kw.fail("transform", "is singular or not finite");
   push_object(L, std::move(inst));
   return 1;
 }
@@ -247,9 +258,21 @@ int l_render(lua_State* L) {
   if (ctx.interrupted) throw Error("torte.render: not started, the run was interrupted");
 
   const auto t0 = std::chrono::steady_clock::now();
-  std::shared_ptr<Scene> flat = build_scene(*scene, ctx.quiet);
+  std::shared_ptr<Scene> flat;
+  try {
+    flat = build_scene(*scene, ctx.quiet);
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const Error& e) {
+    throw Error(std::string("torte.render: ") + e.what());  // the shape, light or group named comes after
+  }
   flat->camera = *camera;
   flat->has_camera = true;
+  if (const std::string why = black_image_reason(*flat); !why.empty()) {
+    luaL_where(L, 1);
+    std::fprintf(stderr, "torte: warning: %storte.render: %s\n", lua_tostring(L, -1), why.c_str());
+    lua_pop(L, 1);
+  }
   const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   ConsoleProgress progress("render");

@@ -506,7 +506,9 @@ TexturePtr param_texture(KwArgs& kw, const char* key, bool colour) {
 
 FloatInput float_input(KwArgs& kw, const char* key, float default_value) {
   if (TexturePtr t = param_texture(kw, key, false)) return {0, std::move(t)};
-  return {float(kw.number(key, default_value)), nullptr};
+  const float v = float(kw.number(key, default_value));
+  if (!std::isfinite(v)) kw.fail(key, "must be finite (it overflows float)");
+  return {v, nullptr};
 }
 
 ColorInput color_input(KwArgs& kw, const char* key, Rgb default_value) {

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 
 namespace torte {
 namespace {
@@ -124,6 +125,9 @@ class Builder {
   void build(uint32_t node, uint32_t begin, uint32_t end, int depth, const RangeBounds& rb, bool report) {
     nodes_[node].bounds = rb.nb;
     const uint32_t count = end - begin;
+    // A safe point for Ctrl-C: the exception leaves parallel_invoke through the caller, and everything built so
+    // far is owned by RAII buffers. Only big nodes check, so the cost is a load per few thousand primitives.
+    if (count >= kParallelSubtreeMin) throw_if_interrupted("building the scene");
     const bool may_be_leaf = count <= uint32_t(o_.max_leaf_size);
     const Vec3f extent = rb.cb.diagonal();
     RangeBounds left, right;
@@ -463,7 +467,10 @@ void check_options(const BvhBuildOptions& o) {
 template <class F>
 void for_chunks(size_t n, bool parallel, F&& f) {
   const size_t chunks = (n + kGrain - 1) / kGrain;
-  auto body = [&](size_t c) { f(c, c * kGrain, std::min(n, (c + 1) * kGrain)); };
+  auto body = [&](size_t c) {
+    throw_if_interrupted("building the scene");  // a safe point per chunk (see Builder::build)
+    f(c, c * kGrain, std::min(n, (c + 1) * kGrain));
+  };
   if (parallel && chunks > 1) {
     tbb::parallel_for(size_t(0), chunks, body);
   } else {

@@ -10,6 +10,11 @@ namespace torte {
 Camera::Camera(const CameraDesc& desc, int width, int height)
     : desc_(desc), width_(float(width)), height_(float(height)) {
   if (width <= 0 || height <= 0) throw Error("image size must be positive");
+  const Transform& c2w = desc.camera_to_world;
+  const float det = c2w.determinant3();
+  if (!(std::fabs(det) > 0) || !std::isfinite(det) || !is_finite(c2w.apply_point({0, 0, 0})) ||
+      !is_finite(c2w.apply_vector({0, 0, 1})))
+    throw Error("the camera's placement is singular or not finite");
   float half;  // half extent across the chosen axis
   if (desc.kind == CameraKind::Perspective) {
     if (!(desc.fov_degrees > 0 && desc.fov_degrees < 180)) throw Error("fov must be in (0, 180) degrees");

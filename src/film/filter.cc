@@ -139,4 +139,23 @@ Filter::Sample Filter::sample(Vec2f u) const {
   return {Vec2f(x, y), wx * wy};
 }
 
+namespace {
+// x mirrored into [0, size]: the reflection has period 2 size. Double keeps the pixel's own position exact for
+// offsets of any size a float radius allows.
+float reflect_into(double x, double size) {
+  double r = std::fmod(x, 2 * size);
+  if (r < 0) r += 2 * size;
+  if (r > size) r = 2 * size - r;
+  return float(r);
+}
+}  // namespace
+
+Vec2f filter_raster_position(int px, int py, Vec2f offset, int width, int height) {
+  const double x = px + 0.5 + double(offset.x), y = py + 0.5 + double(offset.y);
+  // Inside the image (every sample of a small filter away from the edges): exactly the old float sum.
+  if (x >= 0 && x <= width && y >= 0 && y <= height)
+    return {float(px) + 0.5f + offset.x, float(py) + 0.5f + offset.y};
+  return {reflect_into(x, width), reflect_into(y, height)};
+}
+
 }  // namespace torte

@@ -1,7 +1,10 @@
 // Pixel reconstruction filters, all separable: f(x, y) = f1(x) f1(y). Sampled by filter importance sampling
 // (as pbrt-v4 does): each camera sample picks its offset from the filter's |f| and carries weight f/pdf, and it
 // only contributes to its own pixel. Tiles then never write into each other, which keeps rendering
-// deterministic under any thread schedule.
+// deterministic under any thread schedule. A sample's raster position is reflected at the image's edges
+// (filter_raster_position), so every pixel is a weighted average of what lies inside the frame whatever the
+// radius: a radius larger than the image blurs the frame instead of looking beside it (where a camera sees mostly
+// nothing, and the image turned black).
 #pragma once
 #include <string>
 #include <vector>
@@ -44,5 +47,9 @@ class Filter {
   // density, and its normalized running integral at the nodes (cdf_.front() = 0, cdf_.back() = 1).
   std::vector<float> table_, cdf_;
 };
+
+/// The raster position of a filter sample of pixel (px, py) with offset `offset` from the pixel centre, mirrored
+/// at the image's edges into [0, width] x [0, height] (as often as needed: the radius may exceed the image).
+Vec2f filter_raster_position(int px, int py, Vec2f offset, int width, int height);
 
 }  // namespace torte

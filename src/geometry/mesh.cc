@@ -1,10 +1,20 @@
 #include "geometry/mesh.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 
 namespace torte {
+
+namespace {
+std::string format_number(float v) {
+  if (std::isnan(v)) return "nan";  // not "-nan"
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", double(v));
+  return buf;
+}
+}  // namespace
 
 void TriangleMesh::validate(const std::string& what) const {
   const size_t n = x.size();
@@ -17,9 +27,33 @@ void TriangleMesh::validate(const std::string& what) const {
     if (indices[i] >= n)
       throw Error(what + ": index " + std::to_string(indices[i]) + " of triangle " + std::to_string(i / 3) +
                   " is out of range (" + std::to_string(n) + " vertices)");
-  for (size_t i = 0; i < n; ++i)
-    if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(z[i]))
-      throw Error(what + ": vertex " + std::to_string(i) + " has a non-finite position");
+  if (const int64_t i = vertex_out_of_range(); i >= 0) {
+    const Vec3f p = position(uint32_t(i));
+    if (!is_finite(p)) throw Error(what + ": vertex " + std::to_string(i) + " has a non-finite position");
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%g", double(kMaxCoordinate));
+    throw Error(what + ": vertex " + std::to_string(i) + " lies at (" + format_coordinates(p) +
+                "), beyond the range +-" + limit + " that the scene supports");
+  }
+  for (size_t i = 0; i < nx.size(); ++i)
+    if (!std::isfinite(nx[i]) || !std::isfinite(ny[i]) || !std::isfinite(nz[i]))
+      throw Error(what + ": vertex " + std::to_string(i) + " has a non-finite normal");
+  for (size_t i = 0; i < u.size(); ++i)
+    if (!std::isfinite(u[i]) || !std::isfinite(v[i]))
+      throw Error(what + ": vertex " + std::to_string(i) + " has a non-finite uv (" + format_number(u[i]) + ", " +
+                  format_number(v[i]) + ")");
+}
+
+int64_t TriangleMesh::vertex_out_of_range() const {
+  for (size_t i = 0; i < x.size(); ++i) {
+    const Vec3f p{x[i], y[i], z[i]};
+    if (!is_finite(p) || !in_coordinate_range(p)) return int64_t(i);
+  }
+  return -1;
+}
+
+std::string format_coordinates(Vec3f p) {
+  return format_number(p.x) + ", " + format_number(p.y) + ", " + format_number(p.z);
 }
 
 void TriangleMesh::transform(const Transform& t) {

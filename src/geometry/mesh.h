@@ -1,6 +1,7 @@
 // Triangle mesh in structure-of-arrays form: positions, optional vertex normals and uvs, index triples.
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -11,6 +12,15 @@
 #include "core/vec.h"
 
 namespace torte {
+
+/// Every coordinate of a scene, in object and in world space, lies within +-kMaxCoordinate: bounding boxes,
+/// their areas (the BVH's cost) and ray distances then stay finite in float.
+constexpr float kMaxCoordinate = 1e18f;
+inline bool in_coordinate_range(Vec3f p) {
+  return std::fabs(p.x) <= kMaxCoordinate && std::fabs(p.y) <= kMaxCoordinate && std::fabs(p.z) <= kMaxCoordinate;
+}
+/// "1.8e+19, 0, 0" for messages.
+std::string format_coordinates(Vec3f p);
 
 struct TriangleMesh {
   std::vector<float> x, y, z;     // positions
@@ -27,9 +37,12 @@ struct TriangleMesh {
   void add_vertex(Vec3f p) { x.push_back(p.x); y.push_back(p.y); z.push_back(p.z); }
   void add_triangle(uint32_t a, uint32_t b, uint32_t c) { indices.insert(indices.end(), {a, b, c}); }
 
-  // Throws torte::Error (prefixed by `what`) for mismatched array sizes, out-of-range indices or non-finite
-  // positions.
+  // Throws torte::Error (prefixed by `what`, e.g. the file or the function) naming the vertex or triangle, for
+  // mismatched array sizes, out-of-range indices, positions that are not finite or beyond kMaxCoordinate, and
+  // normals or uvs that are not finite.
   void validate(const std::string& what) const;
+  // The first vertex whose position is not finite or beyond kMaxCoordinate, or -1.
+  int64_t vertex_out_of_range() const;
   // Maps positions and normals to world space in place (normals by the inverse transpose, not renormalized per
   // vertex, so interpolation commutes with the transform; handedness flips keep the winding-defined front face,
   // so the geometric normal stays outward).

@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/interrupt.h"
+
 namespace torte {
 
 void compute_smooth_normals(TriangleMesh& mesh) {
   const size_t nv = mesh.vertex_count();
   std::vector<Vec3f> sum(nv);
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    if ((t & 0xffff) == 0) throw_if_interrupted("smoothing normals");
     const uint32_t* idx = &mesh.indices[3 * t];
     const Vec3f p[3] = {mesh.position(idx[0]), mesh.position(idx[1]), mesh.position(idx[2])};
     const Vec3f n = cross(p[1] - p[0], p[2] - p[0]);

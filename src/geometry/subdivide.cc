@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 
 namespace torte {
 
@@ -26,6 +27,7 @@ constexpr uint64_t kMaxTriangles = uint64_t(1) << 31;
 template <class Fn>
 void parallel(size_t n, Fn fn) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+    throw_if_interrupted("subdividing a mesh");  // a safe point per block: TBB rethrows in the caller
     for (size_t i = r.begin(); i != r.end(); ++i) fn(i);
   });
 }
@@ -216,7 +218,10 @@ TriangleMesh subdivide(const TriangleMesh& mesh, int levels, float displacement,
   if (displacement != 0) dn = welded_normals(mesh);
   std::vector<Vec3f>* dn_ptr = displacement != 0 ? &dn : nullptr;
   TriangleMesh current = subdivide_once(mesh, displacement, seed, 1, dn_ptr);
-  for (int level = 2; level <= levels; ++level) current = subdivide_once(current, displacement, seed, level, dn_ptr);
+  for (int level = 2; level <= levels; ++level) {
+    throw_if_interrupted("subdividing a mesh");
+    current = subdivide_once(current, displacement, seed, level, dn_ptr);
+  }
   if (displacement != 0 && current.has_normals()) compute_vertex_normals(current);
   return current;
 }

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
+#include "core/error.h"
 #include "geometry/quadric.h"
 #include "scene/scene.h"
 
@@ -246,6 +248,48 @@ float light_power(const Scene& scene, const Light& light) {
     case LightKind::Area: return kPi * light.area * light.radiance.average() * (light.two_sided ? 2.0f : 1.0f);
   }
   return 0;
+}
+
+const char* light_kind_name(LightKind kind) {
+  switch (kind) {
+    case LightKind::Point: return "point";
+    case LightKind::Area: return "area";
+    case LightKind::Infinite: return "infinite";
+    case LightKind::Spot: return "spot";
+    case LightKind::Distant: return "directional";
+    case LightKind::Environment: return "environment";
+    case LightKind::Sky: return "sky";
+    case LightKind::Patches: return "voxel emission";
+  }
+  return "?";
+}
+
+Light placed_light(const Light& light, const Transform& to_world) {
+  Light out = light;
+  switch (light.kind) {
+    case LightKind::Point:
+      out.position = to_world.apply_point(light.position);
+      break;
+    case LightKind::Spot:
+      out.position = to_world.apply_point(light.position);
+      out.direction = normalize(to_world.apply_vector(light.direction));
+      break;
+    case LightKind::Distant:
+      out.direction = normalize(to_world.apply_vector(light.direction));
+      break;
+    default:
+      throw Error(light_name(light) + " is in a group placed by an instance; " + light_kind_name(light.kind) +
+                  " lights cannot be instanced, add it to the scene itself");
+  }
+  if (!is_finite(out.position) || !(length_squared(out.direction) > 0) || !is_finite(out.direction))
+    throw Error(light_name(light) + ": an instance's transform takes it out of range (not finite, or singular)");
+  return out;
+}
+
+std::string light_name(const Light& light) {
+  if (!light.origin.empty()) return light.origin;
+  const char* kind = light_kind_name(light.kind);
+  return std::string(std::strchr("aeiou", kind[0]) ? "an " : "a ") + kind + " light";
 }
 
 }  // namespace torte

@@ -20,9 +20,11 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "core/rgb.h"
 #include "core/sampling.h"
+#include "core/transform.h"
 #include "core/vec.h"
 #include "light/emissive_patches.h"
 #include "light/environment.h"
@@ -56,7 +58,17 @@ struct Light {
   std::shared_ptr<const EnvironmentMap> environment;  // Environment
   std::shared_ptr<const SkyModel> sky;                // Sky
   std::shared_ptr<const EmissivePatches> patches;     // Patches
+  std::string origin;  // where the script made it ("torte.light.point at scene.lua:12"), for messages; may be empty
 };
+
+/// The light as one placement of its group puts it in the world (instancing): positions map as points, directions
+/// as vectors (renormalized); intensities and the spot cone's angles stay. Point, Spot and Distant lights only:
+/// throws torte::Error for the others (lights at infinity and emitters cannot be placed by an instance).
+Light placed_light(const Light& light, const Transform& to_world);
+/// "point", "spot", "directional", ...
+const char* light_kind_name(LightKind kind);
+/// The light's origin ("torte.light.point at scene.lua:12"), or "a point light" when it is unknown.
+std::string light_name(const Light& light);
 
 struct LightSample {
   Rgb radiance;     // arriving radiance (or intensity / d^2 for point lights)

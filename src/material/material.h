@@ -30,6 +30,12 @@ enum class MaterialType : uint8_t {
 constexpr int kMaterialTypeCount = int(MaterialType::Count);
 // Types that own a shading kernel (Mix and Bump are resolved before shading).
 constexpr int kShadedMaterialTypeCount = int(MaterialType::Mix);
+inline bool is_shaded(MaterialType t) { return int(t) < kShadedMaterialTypeCount; }
+
+/// Mix and Bump materials nest at most this many levels above a shaded material (a leaf is level 0, mix{a, b}
+/// of two leaves level 1). Materials deeper than this are refused when they are made (scene/material_desc.h) and
+/// when a scene's tables are checked (validate_material_tables), so resolve_material always reaches a leaf.
+constexpr int kMaxMaterialNesting = 64;
 
 // 8 bytes: which table and which row.
 struct MaterialRef {

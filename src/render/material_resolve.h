@@ -32,8 +32,10 @@ MaterialRef resolve_material(const Scene& scene, MaterialRef ref, SurfaceHit& s,
                              uint64_t seed) {
   const MaterialTables& m = scene.materials;
   bool first = true;
-  // Materials form a DAG built bottom-up, so this terminates; the bound guards against corrupt tables.
-  for (int level = 0; level < 64; ++level) {
+  // A scene's Mix/Bump rows nest at most kMaxMaterialNesting levels (validate_material_tables, run by
+  // Scene::finalize), so the loop meets a shaded material at the latest in its last round. An unshaded result
+  // would never be shaded, and its path would be traced again and again without end.
+  for (int level = 0; level <= kMaxMaterialNesting; ++level) {
     if (ref.type == MaterialType::Mix) {
       const MixParams& mix = m.mix[ref.index];
       const float amount = scene.textures.eval(mix.amount, texture_context(s, footprint));

@@ -52,7 +52,8 @@ void WavefrontRenderer::generate_camera_rays(const std::vector<SampleRequest>& r
   for (size_t i = 0; i < n; ++i) {
     const SampleRequest& r = requests[i];
     const Filter::Sample fs = settings_.filter.sample(sampler_.get_2d(r.pixel, r.sample, kDimFilter));
-    const Vec2f raster(float(r.pixel % width) + 0.5f + fs.offset.x, float(r.pixel / width) + 0.5f + fs.offset.y);
+    const Vec2f raster = filter_raster_position(int(r.pixel % width), int(r.pixel / width), fs.offset,
+                                               settings_.width, settings_.height);
     const Ray ray = camera_.has_lens() ? camera_.generate_ray(raster, sampler_.get_2d(r.pixel, r.sample, kDimLens))
                                        : camera_.generate_ray(raster);
     paths_.pixel[i] = r.pixel;

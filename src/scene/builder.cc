@@ -1,10 +1,24 @@
 #include "scene/builder.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "core/error.h"
+#include "core/interrupt.h"
+#include "core/memory_budget.h"
 
 namespace torte {
+
+namespace {
+std::string format_number(float v) {
+  if (std::isnan(v)) return "nan";  // not "-nan"
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", double(v));
+  return buf;
+}
+}  // namespace
 
 // State shared while one scene is flattened: materials and textures go to the scene's tables once each, every
 // group with shapes becomes one prototype, and every path through the nesting of groups one instance.
@@ -183,27 +197,43 @@ struct SceneBuilder::Flattening {
       scene.override_emission[size_t(o.index)] = {o.radiance, light_index, o.two_sided};
   }
 
+  static std::string shape_name(const ShapeDesc& s) {
+    if (!s.origin.empty()) return s.origin;
+    return s.kind == ShapeDesc::Kind::Mesh ? "a mesh" : s.kind == ShapeDesc::Kind::Quadric ? "a quadric" : "a voxel grid";
+  }
+
+  // Places the shape in its set's space (the world, a prototype's or a voxel cell's), refusing coordinates that
+  // the transform takes beyond kMaxCoordinate (where bounding boxes and their areas overflow).
   static void place(const ShapeDesc& s, std::vector<TriangleMesh>& meshes, std::vector<Quadric>& quadrics) {
+    throw_if_interrupted("building the scene");
     if (s.kind == ShapeDesc::Kind::Mesh) {
+      if (!s.mesh) throw Error("internal: mesh shape without a mesh");
       TriangleMesh mesh = *s.mesh;
       mesh.transform(s.transform);
+      if (const int64_t v = mesh.vertex_out_of_range(); v >= 0)
+        throw Error(shape_name(s) + ": vertex " + std::to_string(v) + " lies at (" + format_coordinates(mesh.position(uint32_t(v))) +
+                    ") once placed by its transform, beyond the range +-" + format_number(kMaxCoordinate) +
+                    " that the scene supports");
       meshes.push_back(std::move(mesh));
     } else {
       Quadric q = s.quadric;
       q.to_world = s.transform;
+      const Bounds3f b = world_bounds(q);
+      if (!in_coordinate_range(b.lo) || !in_coordinate_range(b.hi))
+        throw Error(shape_name(s) + ": its transform places it beyond the range +-" + format_number(kMaxCoordinate) +
+                    " that the scene supports (bounds from (" + format_coordinates(b.lo) + ") to (" + format_coordinates(b.hi) + "))");
       quadrics.push_back(q);
     }
   }
 
   uint32_t prototype(const SceneBuilder& group) {
     if (auto it = prototype_of.find(&group); it != prototype_of.end()) return it->second;
-    if (!group.lights_.empty()) throw Error("a group placed as an instance holds lights; add lights to the scene");
     auto proto = std::make_unique<Prototype>();
     std::vector<SceneObject> objects;
     for (const ShapeDesc* s : ordered(group.shapes_)) {
       if (!s->emission.is_black())
-        throw Error("a group placed as an instance holds an emitting shape; area lights cannot be instanced, add "
-                    "the emitter to the scene itself");
+        throw Error(shape_name(*s) + ": an emitting shape in a group placed by an instance; area lights cannot be "
+                    "instanced, add the emitter to the scene itself");
       if (s->kind == ShapeDesc::Kind::Voxel)
         proto->grids.push_back(voxel_grid(*s, false));
       else
@@ -217,13 +247,64 @@ struct SceneBuilder::Flattening {
     return index;
   }
 
-  // One instance per path through the nesting; `to_world` places `group`'s contents.
-  void instantiate(const SceneBuilder& group, const Transform& to_world, int depth) {
-    if (depth > 32) throw Error("groups nest more than 32 levels deep (does a group contain itself?)");
-    if (!group.shapes_.empty()) {
-      if (scene.instances.size() >= (size_t(1) << 28)) throw Error("more than 2^28 instances after nesting");
-      scene.instances.push_back({to_world, prototype(group)});
+  // What the placements of a group amount to once the nesting is unrolled (saturating at 2^62).
+  struct Placed {
+    uint64_t instances = 0, lights = 0;
+  };
+  std::map<const SceneBuilder*, Placed> placed_;
+
+  static uint64_t saturating_add(uint64_t a, uint64_t b) { return std::min(a + b, uint64_t(1) << 62); }
+
+  // Counted once per group (memoized), so a wide DAG of groups costs its size, not its number of paths.
+  Placed count(const SceneBuilder& group, int depth) {
+    if (depth > kMaxGroupNesting)
+      throw Error("groups nest more than " + std::to_string(kMaxGroupNesting) +
+                  " levels deep (does a group contain itself?)");
+    if (auto it = placed_.find(&group); it != placed_.end()) return it->second;
+    Placed p;
+    p.instances = group.shapes_.empty() ? 0 : 1;
+    p.lights = group.lights_.size();
+    for (const InstanceDesc& inst : group.instances_) {
+      if (!inst.group) throw Error("internal: instance without a group");
+      const Placed c = count(*inst.group, depth + 1);
+      p.instances = saturating_add(p.instances, c.instances);
+      p.lights = saturating_add(p.lights, c.lights);
     }
+    placed_.emplace(&group, p);
+    return p;
+  }
+
+  // Refuses nestings that unroll into more instances or lights than the limits, before any is made.
+  void check_counts(const std::vector<InstanceDesc>& top) {
+    Placed total;
+    for (const InstanceDesc& inst : top) {
+      if (!inst.group) throw Error("internal: instance without a group");
+      const Placed c = count(*inst.group, 1);
+      total.instances = saturating_add(total.instances, c.instances);
+      total.lights = saturating_add(total.lights, c.lights);
+    }
+    if (total.instances > kMaxInstances)
+      throw Error("the nesting of groups places " + std::to_string(total.instances) + " instances; the limit is " +
+                  std::to_string(kMaxInstances));
+    if (total.lights > kMaxInstancedLights)
+      throw Error("the nesting of groups places " + std::to_string(total.lights) + " lights; the limit is " +
+                  std::to_string(kMaxInstancedLights));
+    reserve_memory(checked_bytes(total.instances, sizeof(Instance), "instances") +
+                       checked_bytes(total.lights, sizeof(Light), "instanced lights"),
+                   "the scene's instances");
+    scene.instances.reserve(size_t(total.instances));
+  }
+
+  // One instance per path through the nesting, and a placed copy of every light of the groups on that path;
+  // `to_world` places `group`'s contents.
+  void instantiate(const SceneBuilder& group, const Transform& to_world, int depth) {
+    if (depth > kMaxGroupNesting) throw Error("internal: groups nest deeper than counted");
+    if ((scene.instances.size() & 0xfff) == 0) throw_if_interrupted("building the scene");
+    const float det = to_world.determinant3();
+    if (!(std::fabs(det) > 0) || !std::isfinite(det))
+      throw Error("an instance's transform (composed through the nesting of groups) is singular or not finite");
+    if (!group.shapes_.empty()) scene.instances.push_back({to_world, prototype(group)});
+    for (const Light& light : group.lights_) scene.lights.push_back(placed_light(light, to_world));
     for (const InstanceDesc& inst : group.instances_) {
       if (!inst.group) throw Error("internal: instance without a group");
       instantiate(*inst.group, to_world * inst.transform, depth + 1);
@@ -231,11 +312,30 @@ struct SceneBuilder::Flattening {
   }
 };
 
+SceneBuilder::~SceneBuilder() {
+  // Groups this one alone keeps alive hand their instances to the work list before they die, so each dies with
+  // no instances left and no destructor recurses.
+  std::vector<std::shared_ptr<const SceneBuilder>> pending;
+  for (InstanceDesc& inst : instances_) pending.push_back(std::move(inst.group));
+  instances_.clear();
+  while (!pending.empty()) {
+    std::shared_ptr<const SceneBuilder> g = std::move(pending.back());
+    pending.pop_back();
+    if (g && g.use_count() == 1) {
+      // The last owner: nothing else can see the group any more, so emptying it is safe.
+      auto& inner = const_cast<SceneBuilder&>(*g).instances_;
+      for (InstanceDesc& inst : inner) pending.push_back(std::move(inst.group));
+      inner.clear();
+    }
+  }
+}
+
 std::shared_ptr<Scene> SceneBuilder::flatten(ProgressCounter* progress) const {
   auto scene = std::make_shared<Scene>();
   Flattening f(*scene);
 
   for (const ShapeDesc* s : Flattening::ordered(shapes_)) {
+    throw_if_interrupted("building the scene");
     const uint32_t object = uint32_t(scene->objects.size());
     if (s->kind == ShapeDesc::Kind::Voxel) {
       scene->grids.push_back(f.voxel_grid(*s, true));
@@ -248,6 +348,7 @@ std::shared_ptr<Scene> SceneBuilder::flatten(ProgressCounter* progress) const {
     if (!s->emission.is_black()) {
       Light light;
       light.kind = LightKind::Area;
+      light.origin = Flattening::shape_name(*s);
       light.radiance = s->emission;
       light.object = object;
       light.two_sided = s->two_sided;
@@ -256,10 +357,8 @@ std::shared_ptr<Scene> SceneBuilder::flatten(ProgressCounter* progress) const {
     }
     scene->objects.push_back(obj);
   }
-  for (const InstanceDesc& inst : instances_) {
-    if (!inst.group) throw Error("internal: instance without a group");
-    f.instantiate(*inst.group, inst.transform, 1);
-  }
+  f.check_counts(instances_);
+  for (const InstanceDesc& inst : instances_) f.instantiate(*inst.group, inst.transform, 1);
   for (const auto& objects : f.prototype_objects)
     scene->objects.insert(scene->objects.end(), objects.begin(), objects.end());
 

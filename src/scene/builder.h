@@ -2,6 +2,7 @@
 // Scene (meshes transformed to world space, materials gathered into per-type tables, lights resolved).
 #pragma once
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "scene/material_desc.h"
@@ -19,6 +20,7 @@ struct ShapeDesc {
   std::shared_ptr<const MaterialDesc> material;
   Rgb emission;            // diffuse area light radiance; black = not a light
   bool two_sided = false;  // emit on both sides
+  std::string origin;      // where the script made it ("torte.shape.mesh at scene.lua:7"), for messages; may be empty
 };
 
 class SceneBuilder;
@@ -29,10 +31,27 @@ struct InstanceDesc {
   Transform transform;  // group-to-parent
 };
 
-// A scene, or a group of shapes to place many times (instancing): the same type, so groups nest freely. Only
-// the scene that is rendered may hold lights and emitting shapes (area lights are not instanced).
+// A scene, or a group of shapes to place many times (instancing): the same type, so groups nest freely. Each
+// placement of a group places a transformed copy of its point, spot and directional lights (placed_light);
+// lights at infinity and emitting shapes belong to the scene that is rendered (area lights are not instanced).
+//
+// Groups nest at most kMaxGroupNesting levels, and the nesting places at most kMaxInstances instances and
+// kMaxInstancedLights lights; flatten() counts them before it allocates anything.
 class SceneBuilder {
  public:
+  SceneBuilder() = default;
+  SceneBuilder(const SceneBuilder&) = default;
+  SceneBuilder& operator=(const SceneBuilder&) = default;
+  SceneBuilder(SceneBuilder&&) = default;
+  SceneBuilder& operator=(SceneBuilder&&) = default;
+  // Releases chains of groups iteratively: a script can nest groups arbitrarily deep (flatten refuses them, the
+  // destructor must still not recurse once per level).
+  ~SceneBuilder();
+
+  static constexpr int kMaxGroupNesting = 32;
+  static constexpr uint64_t kMaxInstances = uint64_t(1) << 28;
+  static constexpr uint64_t kMaxInstancedLights = uint64_t(1) << 20;
+
   void add_shape(ShapeDesc shape) { shapes_.push_back(std::move(shape)); }
   void add_instance(InstanceDesc instance) { instances_.push_back(std::move(instance)); }
   void add_light(const Light& light) { lights_.push_back(light); }
@@ -41,8 +60,9 @@ class SceneBuilder {
   size_t light_count() const { return lights_.size(); }
   size_t instance_count() const { return instances_.size(); }
 
-  // Throws torte::Error on invalid content (bad meshes, degenerate shapes). `progress` (optional): see
-  // Scene::finalize.
+  // Throws torte::Error on invalid content (bad meshes, degenerate shapes, coordinates out of range after the
+  // transforms, lights of non-finite power, too deep or too wide nesting), and torte::Interrupted when Ctrl-C
+  // is pressed (core/interrupt.h). `progress` (optional): see Scene::finalize.
   std::shared_ptr<Scene> flatten(ProgressCounter* progress = nullptr) const;
 
  private:

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/interrupt.h"
 #include "core/error.h"
 #include "traverse.h"
 
@@ -48,6 +49,7 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
     const TriangleMesh& mesh = meshes[m];
     tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangle_count(), 8192),
                       [&](const tbb::blocked_range<size_t>& r) {
+                        throw_if_interrupted("building the scene");  // TBB rethrows in the caller
                         for (size_t t = r.begin(); t < r.end(); ++t)
                           tri_bounds[mesh_first[m] + t] = mesh.triangle_bounds(t);
                         report(r.size());

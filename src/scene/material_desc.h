@@ -35,15 +35,30 @@ struct MaterialDesc {
   FloatInput amount{0.5f, nullptr};
   FloatInput height;
   float bump_scale = 1;
+  int nesting = 0;  // Mix/Bump levels above the deepest leaf below (0 for a shaded material); set by make_mix/make_bump
 };
+
+/// A Mix of `a` and `b` (b with probability `amount`) and a Bump of `inner`. Throw torte::Error when the result
+/// would nest Mix/Bump materials more than kMaxMaterialNesting levels deep (material/material.h), which keeps
+/// flattening, resolution at render time and the destruction of the shared chain bounded.
+std::shared_ptr<MaterialDesc> make_mix(std::shared_ptr<const MaterialDesc> a, std::shared_ptr<const MaterialDesc> b,
+                                       FloatInput amount);
+std::shared_ptr<MaterialDesc> make_bump(std::shared_ptr<const MaterialDesc> inner, FloatInput height, float scale);
+
+/// Checks a scene's flattened tables: every Mix/Bump reference names an existing row, and Mix/Bump rows nest at
+/// most kMaxMaterialNesting levels without cycles, so resolve_material (render/material_resolve.h) always ends on
+/// a shaded material. Throws torte::Error otherwise.
+void validate_material_tables(const MaterialTables& tables);
 
 // Flattens materials into MaterialTables, deduplicating by pointer; textures go through `textures`.
 class MaterialFlattener {
  public:
   MaterialFlattener(MaterialTables& tables, TextureTableBuilder& textures) : tables_(tables), textures_(textures) {}
-  MaterialRef add(const MaterialDesc& desc);
+  /// Throws torte::Error for a material nesting more than kMaxMaterialNesting Mix/Bump levels.
+  MaterialRef add(const MaterialDesc& desc) { return add(desc, 0); }
 
  private:
+  MaterialRef add(const MaterialDesc& desc, int level);
   RoughnessParams roughness(const RoughnessInput& r);
   MaterialTables& tables_;
   TextureTableBuilder& textures_;

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "geometry/triangle.h"
+#include "scene/material_desc.h"
 #include "traverse.h"
 
 namespace torte {
@@ -18,6 +19,7 @@ void Scene::finalize(ProgressCounter* progress) {
   for (const auto& proto : prototypes)
     object_base += uint32_t(proto->meshes.size() + proto->quadrics.size() + proto->grids.size());
   if (objects.size() != object_base) throw Error("internal: scene objects do not match its shapes");
+  validate_material_tables(materials);
   if (progress) {
     uint64_t triangles = 0;
     for (const TriangleMesh& m : meshes) triangles += m.triangle_count();
@@ -36,6 +38,9 @@ void Scene::finalize(ProgressCounter* progress) {
   for (size_t i = 0; i < instances.size(); ++i) {
     if (instances[i].prototype >= prototypes.size()) throw Error("internal: instance of a missing prototype");
     instance_bounds[i] = instances[i].to_world.apply(prototypes[instances[i].prototype]->geometry.bounds());
+    if (!instance_bounds[i].empty() && (!in_coordinate_range(instance_bounds[i].lo) || !in_coordinate_range(instance_bounds[i].hi)))
+      throw Error("instance " + std::to_string(i) + " (after unrolling the nesting of groups) places its group beyond "
+                  "+-1e18, the range the scene supports");
   }
   instance_bvh_.build(instance_bounds);
   bounds_ = merge(root_.bounds(), instance_bvh_.bounds());
@@ -52,7 +57,7 @@ void Scene::finalize(ProgressCounter* progress) {
       std::vector<float> areas(mesh.triangle_count());
       double total = 0;
       for (size_t t = 0; t < areas.size(); ++t) total += areas[t] = mesh.triangle_area(t);
-      if (!(total > 0)) throw Error("an emitting mesh has zero area");
+      if (!(total > 0)) throw Error(light_name(light) + ": the emitting mesh has zero area");
       light.triangles = Distribution1D(areas);
       light.area = float(total);
     } else {
@@ -61,7 +66,12 @@ void Scene::finalize(ProgressCounter* progress) {
     }
   }
   std::vector<float> power(lights.size());
-  for (size_t i = 0; i < lights.size(); ++i) power[i] = light_power(*this, lights[i]);
+  for (size_t i = 0; i < lights.size(); ++i) {
+    power[i] = light_power(*this, lights[i]);
+    if (!(power[i] >= 0) || !std::isfinite(power[i]))
+      throw Error(light_name(lights[i]) + ": its emitted power is " + (std::isnan(power[i]) ? "not a number" : "infinite") +
+                  " in float; lower its intensity (or the emitter's size)");
+  }
   light_selection = lights.empty() ? Distribution1D() : Distribution1D(power);
   release_positions();
 }
@@ -181,6 +191,21 @@ SurfaceHit Scene::surface(const Ray& ray, const Hit& hit) const {
   s.dpdu = m.apply_vector(s.dpdu);
   s.dpdv = m.apply_vector(s.dpdv);
   return s;
+}
+
+std::string black_image_reason(const Scene& scene) {
+  const bool shapes = scene.primitive_count() > 0 || !scene.instances.empty();
+  if (!shapes && scene.lights.empty()) return "the scene is empty (no shapes, no lights): the image is black";
+  if (scene.lights.empty()) return "the scene has no lights and no emitting shapes: the image is black";
+  bool at_infinity = false, power = false;
+  for (const Light& l : scene.lights) {
+    at_infinity |= is_infinite_light(l);
+    power |= light_power(scene, l) > 0;
+  }
+  if (!power) return "every light of the scene has zero power: the image is black";
+  if (!shapes && !at_infinity)
+    return "the scene has no shapes and no light at infinity (infinite, environment, sky): the image is black";
+  return "";
 }
 
 }  // namespace torte

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "camera/camera.h"
@@ -47,6 +48,11 @@ struct Instance {
   Transform to_world;
   uint32_t prototype;
 };
+
+class Scene;
+/// Why every image of `scene` is black whatever the camera sees ("the scene has no lights and no emitting
+/// shapes"), or "" when something may be lit. For a warning: such a scene is legitimate.
+std::string black_image_reason(const Scene& scene);
 
 class Scene {
  public:

@@ -61,11 +61,19 @@ inline float grad3(uint32_t h, float x, float y, float z) {
 
 inline float clamp1(float v) { return v < -1 ? -1 : (v > 1 ? 1 : v); }
 
+// A floored coordinate as a lattice index, wrapped to 32 bits like the hash: converting a float beyond 2^31 (or
+// NaN) to int32_t directly is undefined behaviour, and scene coordinates reach 1e18.
+inline int32_t lattice(float f) {
+  if (std::fabs(f) < 2147483648.0f) return int32_t(f);
+  if (!std::isfinite(f)) return 0;
+  return int32_t(uint32_t(int64_t(std::fmod(double(f), 4294967296.0))));
+}
+
 }  // namespace
 
 float value_noise(Vec2f p, uint32_t seed) {
   const float fx = std::floor(p.x), fy = std::floor(p.y);
-  const int32_t x = int32_t(fx), y = int32_t(fy);
+  const int32_t x = lattice(fx), y = lattice(fy);
   const float u = fade(p.x - fx), v = fade(p.y - fy);
   return lerp(v, lerp(u, to_signed(hash(x, y, seed)), to_signed(hash(x + 1, y, seed))),
               lerp(u, to_signed(hash(x, y + 1, seed)), to_signed(hash(x + 1, y + 1, seed))));
@@ -73,7 +81,7 @@ float value_noise(Vec2f p, uint32_t seed) {
 
 float value_noise(Vec3f p, uint32_t seed) {
   const float fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
-  const int32_t x = int32_t(fx), y = int32_t(fy), z = int32_t(fz);
+  const int32_t x = lattice(fx), y = lattice(fy), z = lattice(fz);
   const float u = fade(p.x - fx), v = fade(p.y - fy), w = fade(p.z - fz);
   auto val = [&](int dx, int dy, int dz) { return to_signed(hash(x + dx, y + dy, z + dz, seed)); };
   return lerp(w,
@@ -83,7 +91,7 @@ float value_noise(Vec3f p, uint32_t seed) {
 
 float perlin_noise(Vec2f p, uint32_t seed) {
   const float fx = std::floor(p.x), fy = std::floor(p.y);
-  const int32_t x = int32_t(fx), y = int32_t(fy);
+  const int32_t x = lattice(fx), y = lattice(fy);
   const float rx = p.x - fx, ry = p.y - fy;
   const float u = fade(rx), v = fade(ry);
   const float n = lerp(v, lerp(u, grad2(hash(x, y, seed), rx, ry), grad2(hash(x + 1, y, seed), rx - 1, ry)),
@@ -95,7 +103,7 @@ float perlin_noise(Vec2f p, uint32_t seed) {
 
 float perlin_noise(Vec3f p, uint32_t seed) {
   const float fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
-  const int32_t x = int32_t(fx), y = int32_t(fy), z = int32_t(fz);
+  const int32_t x = lattice(fx), y = lattice(fy), z = lattice(fz);
   const float rx = p.x - fx, ry = p.y - fy, rz = p.z - fz;
   const float u = fade(rx), v = fade(ry), w = fade(rz);
   auto g = [&](int dx, int dy, int dz) {

@@ -56,6 +56,35 @@ std::shared_ptr<TextureDesc> node(TextureKind kind, ValueType output, ValueType 
   return d;
 }
 
+// Sets d's depth and visit count from its children (visits: `pick_one` for a checker, which evaluates one of
+// them) and refuses expressions past the limits.
+// Closing a finished root (`checked` false) may add one level past the limits.
+TexturePtr sealed(std::shared_ptr<TextureDesc> d, bool pick_one = false, bool checked = true) {
+  uint32_t depth = 0;
+  uint64_t visits = 0;
+  for (const TexturePtr& c : d->children) {
+    depth = std::max(depth, c->depth);
+    visits = pick_one ? std::max(visits, c->visits) : visits + c->visits;  // each <= 2^16: no overflow
+  }
+  d->depth = depth + 1;
+  d->visits = visits + 1;
+  if (!checked) return d;
+  if (d->depth > kMaxTextureDepth)
+    throw Error("the texture expression nests " + std::to_string(d->depth) + " levels deep; the limit is " +
+                std::to_string(kMaxTextureDepth) + " (combine long sums as a balanced tree)");
+  if (d->visits > kMaxTextureVisits)
+    throw Error("evaluating the texture expression would visit " + std::to_string(d->visits) +
+                " nodes per lookup (a shared sub-texture counts once per use); the limit is " +
+                std::to_string(kMaxTextureVisits));
+  return d;
+}
+
+void require_invertible(const Transform& t) {
+  const float det = t.determinant3();
+  if (!std::isfinite(det) || std::fabs(det) < 1e-30f || !is_finite(t.inverse().apply_point(Vec3f(0, 0, 0))))
+    throw Error("'transform' must be invertible (it is singular or not finite)");
+}
+
 void require(const TexturePtr& t, const char* name) {
   if (!t) throw Error(std::string("'") + name + "' is missing");
 }
@@ -137,12 +166,14 @@ TexturePtr uv(Vec2f scale, Vec2f offset) {
 }
 
 TexturePtr spherical(const Transform& transform) {
+  require_invertible(transform);
   auto d = node(TextureKind::Spherical, ValueType::Vec2, ValueType::None);
   d->transform = transform;
   return d;
 }
 
 TexturePtr cylindrical(const Transform& transform) {
+  require_invertible(transform);
   auto d = node(TextureKind::Cylindrical, ValueType::Vec2, ValueType::None);
   d->transform = transform;
   return d;
@@ -153,6 +184,7 @@ TexturePtr planar(Vec3f s_axis, Vec3f t_axis, Vec2f offset, const Transform& tra
   if (!is_finite(t_axis) || length_squared(t_axis) == 0) throw Error("'t' must be a finite non-zero vector");
   require_finite(offset.x, "offset");
   require_finite(offset.y, "offset");
+  require_invertible(transform);
   auto d = node(TextureKind::Planar, ValueType::Vec2, ValueType::None);
   d->s_axis = s_axis;
   d->t_axis = t_axis;
@@ -162,6 +194,7 @@ TexturePtr planar(Vec3f s_axis, Vec3f t_axis, Vec2f offset, const Transform& tra
 }
 
 TexturePtr xyz(const Transform& transform) {
+  require_invertible(transform);
   auto d = node(TextureKind::Xyz, ValueType::Vec3, ValueType::None);
   d->transform = transform;
   return d;
@@ -176,7 +209,7 @@ TexturePtr checker(TexturePtr a, TexturePtr b, int dims, float scale) {
                 dims == 2 ? ValueType::Vec2 : ValueType::Vec3);
   d->children = {close_arg(std::move(a), "a"), close_arg(std::move(b), "b")};
   d->scale = {scale, scale};
-  return d;
+  return sealed(std::move(d), true);
 }
 
 TexturePtr noise(const NoiseParams& params) {
@@ -229,7 +262,7 @@ TexturePtr binary(TextureKind kind, TexturePtr a, TexturePtr b) {
   const ValueType input = share_inputs({{&a, "a"}, {&b, "b"}});
   auto d = node(kind, wider(a->output, b->output), input);
   d->children = {std::move(a), std::move(b)};
-  return d;
+  return sealed(std::move(d));
 }
 }  // namespace
 
@@ -244,7 +277,7 @@ TexturePtr scale(TexturePtr a, float factor) {
   auto d = node(TextureKind::Scale, a->output, a->input);
   d->factor = factor;
   d->children = {std::move(a)};
-  return d;
+  return sealed(std::move(d));
 }
 
 TexturePtr lerp(TexturePtr t, TexturePtr a, TexturePtr b) {
@@ -256,10 +289,11 @@ TexturePtr lerp(TexturePtr t, TexturePtr a, TexturePtr b) {
   const ValueType input = share_inputs({{&t, "t"}, {&a, "a"}, {&b, "b"}});
   auto d = node(TextureKind::Lerp, wider(a->output, b->output), input);
   d->children = {std::move(t), std::move(a), std::move(b)};
-  return d;
+  return sealed(std::move(d));
 }
 
-TexturePtr compose(TexturePtr outer, TexturePtr inner) {
+namespace {
+TexturePtr compose_checked(TexturePtr outer, TexturePtr inner, bool checked) {
   require(outer, "outer");
   require(inner, "inner");
   if (outer->input == ValueType::None)
@@ -271,15 +305,18 @@ TexturePtr compose(TexturePtr outer, TexturePtr inner) {
                 ") gives a " + value_type_name(inner->output) + " value");
   auto d = node(TextureKind::Compose, outer->output, inner->input);
   d->children = {std::move(outer), std::move(inner)};
-  return d;
+  return sealed(std::move(d), false, checked);
 }
+}  // namespace
+
+TexturePtr compose(TexturePtr outer, TexturePtr inner) { return compose_checked(std::move(outer), std::move(inner), true); }
 
 TexturePtr close(TexturePtr t) {
   require(t, "texture");
   switch (t->input) {
     case ValueType::None: return t;
-    case ValueType::Vec2: return compose(std::move(t), default_uv());
-    case ValueType::Vec3: return compose(std::move(t), default_xyz());
+    case ValueType::Vec2: return compose_checked(std::move(t), default_uv(), false);
+    case ValueType::Vec3: return compose_checked(std::move(t), default_xyz(), false);
     default:
       throw Error(std::string("a ") + texture_kind_name(t->kind) + " texture takes a " +
                   value_type_name(t->input) + " input and cannot be used on its own; compose it with a " +

@@ -70,10 +70,22 @@ struct TextureDesc {
   std::vector<float> positions;
   bool linear = false;
   std::shared_ptr<const ImageSource> image;  // Image
+  // Set by the constructors below: the longest chain of nodes down to a leaf (1 for a leaf), and how many nodes
+  // one evaluation visits (a shared sub-texture counts once per use; a checker visits one of its colours).
+  uint32_t depth = 1;
+  uint64_t visits = 1;
 };
 using TexturePtr = std::shared_ptr<const TextureDesc>;
 
-// Constructors. Each validates its arguments and throws torte::Error("'<argument>' ...") on a type error.
+/// Texture expressions nest at most kMaxTextureDepth levels and one evaluation visits at most kMaxTextureVisits
+/// nodes: the constructors refuse more (torte::Error), so flattening, evaluation at render time (recursive, on
+/// render threads' stacks) and destruction of the shared graph stay bounded in stack and time.
+constexpr uint32_t kMaxTextureDepth = 1024;
+constexpr uint64_t kMaxTextureVisits = uint64_t(1) << 16;
+
+// Constructors. Each validates its arguments and throws torte::Error("'<argument>' ...") on a type error, and
+// torte::Error when the result would pass kMaxTextureDepth or kMaxTextureVisits. Mapping transforms must be
+// invertible.
 namespace texture {
 TexturePtr constant(float value);
 TexturePtr constant(Rgb value);
@@ -96,7 +108,8 @@ TexturePtr multiply(TexturePtr a, TexturePtr b);
 TexturePtr scale(TexturePtr a, float factor);
 TexturePtr lerp(TexturePtr t, TexturePtr a, TexturePtr b);  // (1 - t) a + t b; t a Float texture
 TexturePtr compose(TexturePtr outer, TexturePtr inner);     // outer o inner
-// The texture with its default input supplied (itself when it reads only the hit). Throws for Float input.
+// The texture with its default input supplied (itself when it reads only the hit). Throws for Float input. The
+// closed texture may pass kMaxTextureDepth by the one level it adds.
 TexturePtr close(TexturePtr t);
 }  // namespace texture
 

@@ -24,6 +24,14 @@ float uv_footprint(const TextureContext& ctx) {
   return std::isfinite(w) ? w : 0;
 }
 
+// floor(x) mod 2 without converting floats beyond int64's range (undefined behaviour): floats that large are even
+// integers anyway. NaN counts as 0.
+int64_t cell_parity(float x) {
+  const float f = std::floor(x);
+  if (std::fabs(f) < 4e18f) return int64_t(f) & 1;
+  return 0;
+}
+
 }  // namespace
 
 TexValue TextureTable::eval_node(int32_t index, const TextureContext& ctx, TexValue in) const {
@@ -59,8 +67,8 @@ TexValue TextureTable::eval_node(int32_t index, const TextureContext& ctx, TexVa
     case TextureKind::Checker2:
     case TextureKind::Checker3: {
       const float s = n.f[0];
-      int64_t parity = int64_t(std::floor(in.x * s)) + int64_t(std::floor(in.y * s));
-      if (n.kind == TextureKind::Checker3) parity += int64_t(std::floor(in.z * s));
+      int64_t parity = cell_parity(in.x * s) + cell_parity(in.y * s);
+      if (n.kind == TextureKind::Checker3) parity += cell_parity(in.z * s);
       // Children are closed textures: they read the hit, not this node's input.
       return eval_node((parity & 1) == 0 ? n.a : n.b, ctx, TexValue{});
     }

@@ -444,6 +444,7 @@ TEST_CASE("cli: scripts cannot reach the metatables of torte objects", "[cli]") 
   CliDir dir("metatable");
   const Result r = run(dir, {"--quiet", dir.write("mt.lua", R"(
 local s = torte.scene()
+s:add(torte.light.infinite{})  -- not an empty scene, which would warn
 assert(getmetatable(s) == "torte.scene", "metatable is hidden behind its name")
 local img = torte.render{scene = s, camera = torte.camera.perspective{}, width = 2, height = 2, spp = 1}
 assert(getmetatable(img) == "torte.image")
@@ -456,7 +457,7 @@ error("reached the end")
 TEST_CASE("cli: torte.save reports a write failure at the calling line", "[cli]") {
   CliDir dir("save_error");
   const Result r = run(dir, {"--quiet", dir.write("save.lua", R"(
-local s = torte.scene()
+local s = torte.scene():add(torte.light.infinite{})  -- not an empty scene, which would warn
 local img = torte.render{scene = s, camera = torte.camera.perspective{}, width = 2, height = 2, spp = 1}
 torte.save(img, "/dev/null/cannot/x.exr")
 )")});

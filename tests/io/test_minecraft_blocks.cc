@@ -246,7 +246,7 @@ TEST_CASE("minecraft blocks: glowstone torches and fire light a dark scene as vo
   // A stone floor under a black sky with three emitting blocks: a cube (glowstone), a torch (an emitting flame box
   // on a stick) and fire (two emitting crossed quads). Without emission the image is black; with it the floor
   // around each emitter is lit and the lit floor shows the emitters' colours.
-  const std::string out = run_ok(dir, R"LUA(
+  const Result r = run_lua(dir, R"LUA(
 local blocks = require "minecraft.blocks"
 local function render(emission)
   local reg = blocks.registry()
@@ -282,5 +282,10 @@ for _, e in ipairs({{"glowstone", 36, 22, 50}, {"torch", 24, 22, 5}, {"fire", 12
 end
 print("ok")
 )LUA");
-  (void)out;
+  INFO("stdout: " << r.out << "\nstderr: " << r.err);
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Catch::EndsWith("ok\n"));
+  // The dark render is black by design, and says so in one warning line.
+  CHECK_THAT(r.err, Catch::StartsWith("torte: warning: ") && Catch::Contains("no lights and no emitting shapes"));
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
 }
