@@ -98,7 +98,12 @@ int l_environment(lua_State* L) {
   auto l = std::make_shared<Light>();
   l->kind = LightKind::Environment;
   try {
-    l->environment = make_environment_map(read_image(file), to_world, scale);
+    const Image image = read_image(file);  // its errors name the file
+    try {
+      l->environment = make_environment_map(image, to_world, scale);
+    } catch (const Error& e) {
+      throw Error("'" + file + "': " + e.what());
+    }
   } catch (const Error& e) {
     throw Error(kw.function() + ": " + e.what());
   }
