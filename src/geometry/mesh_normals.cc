@@ -2,11 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "core/memory_budget.h"
 
 namespace torte {
 
 void compute_smooth_normals(TriangleMesh& mesh) {
   const size_t nv = mesh.vertex_count();
+  reserve_memory(uint64_t(nv) * 2 * sizeof(Vec3f),
+                 "smooth normals of " + std::to_string(nv) + " vertices");  // the sums and the normals
   std::vector<Vec3f> sum(nv);
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const uint32_t* idx = &mesh.indices[3 * t];
