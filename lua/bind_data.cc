@@ -286,10 +286,14 @@ class NbtReader {
     return size_t(len);
   }
 
-  // A Lua array of `len` entries costs 16 bytes each (a TValue), more than the 1 to 8 bytes they take in NBT.
-  void reserve_table(size_t len, const char* what) {
+  // What a Lua array of `len` entries of NBT type `type` costs: 16 bytes a slot (a TValue), plus a table (lists,
+  // compounds, int arrays), a string or a userdata per entry, far more than the 1 to 8 bytes an entry can take in
+  // NBT; so a short input cannot build tables the machine cannot hold.
+  void reserve_table(size_t len, int type, const char* what) {
+    static constexpr uint64_t kEntryBytes[13] = {16, 16, 16, 16, 16, 16, 16, 48, 48, 80, 80, 80, 48};
     try {
-      reserve_memory(uint64_t(len) * 16, "an NBT " + std::string(what) + " of " + std::to_string(len) + " entries");
+      reserve_memory(uint64_t(len) * kEntryBytes[type],
+                     "an NBT " + std::string(what) + " of " + std::to_string(len) + " entries");
     } catch (const Error& e) {
       fail(e.what());
     }
@@ -353,7 +357,7 @@ class NbtReader {
         static constexpr size_t kMinBytes[13] = {1, 1, 2, 4, 8, 4, 8, 4, 2, 5, 1, 4, 4};
         const size_t len = array_length(kMinBytes[et], "list");
         if (et == 0 && len > 0) fail("a list of TAG_End with " + std::to_string(len) + " entries");
-        reserve_table(len, "list");
+        reserve_table(len, et, "list");
         lua_createtable(L_, int(len), 0);
         for (size_t i = 0; i < len; ++i) {
           path_.push_back(index_label(i + 1));
@@ -381,7 +385,7 @@ class NbtReader {
       }
       case 11: {
         const size_t len = array_length(4, "int array");
-        reserve_table(len, "int array");
+        reserve_table(len, 3, "int array");
         lua_createtable(L_, int(len), 0);
         for (size_t i = 0; i < len; ++i) {
           lua_pushinteger(L_, int32_t(uint32_t(be(4))));

@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/memory_budget.h"
 #include "film/image_io.h"
+#include "runtime.h"
 #include "test_support.h"
 #include "texture/image_texture_oiio.h"
 
@@ -157,4 +158,24 @@ print("ok")
   INFO(r.err);
   CHECK(r.code == 0);
   CHECK(r.out == "ok\n");
+}
+
+TEST_CASE("limits io: nbt refuses counts whose Lua tables would pass the memory budget", "[limits]") {
+  LimitDir dir("nbt");
+  // Counts the bytes can hold (an empty compound is one byte, an int four) but whose tables cost 16 to 80 bytes
+  // an entry: run in this process, under a budget of what it holds now plus 24 MB.
+  const std::string script = dir.write("nbt.lua", R"LUA(
+local list = "\x09\x00\x01L\x0a" .. string.pack(">i4", 1000000) .. ("\0"):rep(1000000)
+local ok, e = pcall(torte.data.nbt, list)
+assert(not ok and e:find("an NBT list of 1000000 entries needs ~76.3 MB", 1, true), e)
+local ints = "\x0b\x00\x01I" .. string.pack(">i4", 2000000) .. ("\0"):rep(8000000)
+ok, e = pcall(torte.data.nbt, ints)
+assert(not ok and e:find("an NBT int array of 2000000 entries needs ~30.5 MB", 1, true), e)
+assert(#torte.data.nbt("\x09\x00\x01L\x0a" .. string.pack(">i4", 1000) .. ("\0"):rep(1000)) == 1000)
+)LUA");
+  MemoryLimit limit(resident_memory() + (uint64_t(24) << 20));
+  lua::RunOptions options;
+  options.script = script;
+  options.quiet = true;
+  CHECK(lua::run_script(options) == lua::kExitOk);
 }
