@@ -3,11 +3,16 @@
 //
 //   local s = torte.data.read_file("r.0.0.mca")        -- the whole file as a string; errors name the file
 //   local names = torte.data.list_dir("world/region")   -- sorted names, or nil + message
-//   local raw = torte.data.inflate(s:sub(6, 5 + n))     -- zlib stream -> string (gunzip for gzip streams)
+//   local raw = torte.data.inflate(s:sub(6, 5 + n) [, limit])   -- zlib stream -> string (gunzip for gzip)
 //   local root, name, next = torte.data.nbt(raw [, offset=1])   -- NBT (big-endian) -> Lua values
 //   local ids, counts = torte.data.unpack_bits(src, bits, count [, padded [, map]])
 //   local s2 = torte.data.map_int16(s, {[v] = w, ...} [, nil]) / map_int16(s, {map1, map2, ...}, select)
 //   torte.data.lz4_block, lz4_compress, xxhash32                 -- lua/bind_data_lz4.cc
+//
+// read_file takes regular files only, up to a quarter of the memory limit (core/file_read.h). inflate and gunzip
+// stop with an error once the output would pass `limit` bytes (default kDefaultDecompressLimit, 256 MiB: a
+// Minecraft chunk is a few MB), so a compression bomb costs at most that much. nbt checks every declared count
+// against the bytes left (each entry's smallest encoding) and the memory budget before building a table.
 //
 // NBT tags become: byte/short/int/long -> integer, float/double -> number, string -> string, byte array ->
 // string (raw bytes), list -> array table, compound -> table, int array -> integer array table, long array ->
@@ -23,17 +28,16 @@
 #include <zlib.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "core/file_read.h"
+#include "core/memory_budget.h"
 #include "types.h"
 
 namespace torte::lua {
@@ -66,65 +70,87 @@ int l_list_dir(lua_State* L) {
   return 1;
 }
 
+// read_file(path): the whole file (a regular file within the size bound of core/file_read.h) as a string.
 int l_read_file(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) throw Error("torte.data.read_file expects a file name, got " + type_name(L, 1));
   const std::string path = lua_tostring(L, 1);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("torte.data.read_file: cannot open '" + path + "': " + std::strerror(errno));
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad()) throw Error("torte.data.read_file: cannot read '" + path + "'");
-  const std::string data = s.str();
+  std::string data;
+  try {
+    data = read_file_bytes(path);
+  } catch (const Error& e) {
+    throw Error(std::string("torte.data.read_file: ") + e.what());
+  }
   lua_pushlstring(L, data.data(), data.size());
   return 1;
 }
 
-// windowBits 15: zlib, 15 + 16: gzip. Decompresses one stream; trailing bytes after it are an error.
-std::string decompress(const char* fn, const unsigned char* in, size_t n, int window_bits) {
+// windowBits 15: zlib, 15 + 16: gzip. Decompresses one stream of at most `limit` bytes; trailing bytes after it
+// are an error.
+std::string decompress(const char* fn, const unsigned char* in, size_t n, int window_bits, uint64_t limit) {
   z_stream z{};
   if (inflateInit2(&z, window_bits) != Z_OK) throw Error(std::string(fn) + ": cannot initialise zlib");
+  struct End {
+    z_stream* z;
+    ~End() { inflateEnd(z); }
+  } end{&z};
   std::string out;
-  out.resize(n < 64 ? 256 : n * 4);
+  // A first guess of 4x the input; growth doubles, never past the limit (+1 byte, to tell "exactly the limit"
+  // from "more").
+  const uint64_t cap = limit + 1;
+  out.resize(size_t(std::min<uint64_t>(cap, n < 64 ? 256 : uint64_t(n) * 4)));
   z.next_in = const_cast<unsigned char*>(in);
-  z.avail_in = uInt(n);
+  auto over_limit = [&] {
+    return Error(std::string(fn) + ": the stream decompresses to more than " + format_bytes(limit) +
+                 " (the output limit; pass a larger one as the second argument) after " +
+                 std::to_string(z.total_in) + " of " + std::to_string(n) + " input bytes");
+  };
   int rc = Z_OK;
+  size_t fed = 0;  // input bytes handed to zlib so far (avail_in is 32 bits)
   for (;;) {
-    if (z.total_out == out.size()) out.resize(out.size() * 2);
+    if (z.avail_in == 0 && fed < n) {
+      const size_t chunk = std::min<size_t>(n - fed, 1u << 30);
+      z.next_in = const_cast<unsigned char*>(in) + fed;
+      z.avail_in = uInt(chunk);
+      fed += chunk;
+    }
+    if (z.total_out == out.size()) {
+      if (out.size() >= cap) throw over_limit();
+      const uint64_t grown = std::min<uint64_t>(cap, 2 * uint64_t(out.size()));
+      reserve_memory(grown, std::string(fn) + " output");
+      out.resize(size_t(grown));
+    }
     z.next_out = reinterpret_cast<unsigned char*>(out.data()) + z.total_out;
-    z.avail_out = uInt(out.size() - z.total_out);
+    z.avail_out = uInt(std::min<uint64_t>(out.size() - z.total_out, 1u << 30));
     rc = inflate(&z, Z_NO_FLUSH);
+    if (z.total_out > limit) throw over_limit();
     if (rc == Z_STREAM_END) break;
     if (rc == Z_OK) continue;
     if (rc == Z_BUF_ERROR && z.avail_out > 0) {  // no progress possible: the input ran out
-      const size_t used = z.total_in;
-      const uLong produced = z.total_out;
-      inflateEnd(&z);
-      z.total_out = produced;
-      throw Error(std::string(fn) + ": truncated input: the compressed stream ends early (all " + std::to_string(used) +
-                  " bytes read, " + std::to_string(z.total_out) + " bytes decompressed)");
+      throw Error(std::string(fn) + ": truncated input: the compressed stream ends early (all " +
+                  std::to_string(z.total_in) + " bytes read, " + std::to_string(z.total_out) +
+                  " bytes decompressed)");
     }
     if (rc == Z_BUF_ERROR) continue;
     const std::string msg = z.msg ? z.msg : "error " + std::to_string(rc);
-    const size_t at = z.total_in;
-    inflateEnd(&z);
-    throw Error(std::string(fn) + ": corrupt input near byte " + std::to_string(at) + ": " + msg);
+    throw Error(std::string(fn) + ": corrupt input near byte " + std::to_string(z.total_in) + ": " + msg);
   }
   const size_t used = z.total_in, produced = z.total_out;
-  inflateEnd(&z);
   out.resize(produced);
   if (used != n)
     throw Error(std::string(fn) + ": " + std::to_string(n - used) + " bytes of trailing data after the stream");
   return out;
 }
 
+// inflate(s [, limit]) / gunzip(s [, limit]): limit = the most bytes the output may have (kDefaultDecompressLimit).
 template <int WindowBits>
 int l_decompress(lua_State* L) {
   const char* fn = WindowBits == 15 ? "torte.data.inflate" : "torte.data.gunzip";
   if (lua_type(L, 1) != LUA_TSTRING) throw Error(std::string(fn) + " expects a string, got " + type_name(L, 1));
   size_t n = 0;
   const char* s = lua_tolstring(L, 1, &n);
+  const uint64_t limit = decompress_limit(L, 2, fn);
   if (n == 0) throw Error(std::string(fn) + ": empty input");
-  const std::string out = decompress(fn, reinterpret_cast<const unsigned char*>(s), n, WindowBits);
+  const std::string out = decompress(fn, reinterpret_cast<const unsigned char*>(s), n, WindowBits, limit);
   lua_pushlstring(L, out.data(), out.size());
   return 1;
 }
@@ -260,6 +286,19 @@ class NbtReader {
     return size_t(len);
   }
 
+  // What a Lua array of `len` entries of NBT type `type` costs: 16 bytes a slot (a TValue), plus a table (lists,
+  // compounds, int arrays), a string or a userdata per entry, far more than the 1 to 8 bytes an entry can take in
+  // NBT; so a short input cannot build tables the machine cannot hold.
+  void reserve_table(size_t len, int type, const char* what) {
+    static constexpr uint64_t kEntryBytes[13] = {16, 16, 16, 16, 16, 16, 16, 48, 48, 80, 80, 80, 48};
+    try {
+      reserve_memory(uint64_t(len) * kEntryBytes[type],
+                     "an NBT " + std::string(what) + " of " + std::to_string(len) + " entries");
+    } catch (const Error& e) {
+      fail(e.what());
+    }
+  }
+
   void value(int type) {
     if (++depth_ > 512) fail("nesting deeper than 512 levels");
     luaL_checkstack(L_, 8, "torte.data.nbt");
@@ -314,8 +353,11 @@ class NbtReader {
         need(1, "a list element type");
         const int et = d_[p_++];
         if (et > 12) fail("unknown list element type " + std::to_string(et));
-        const size_t len = array_length(1, "list");
+        // The fewest bytes an entry of each type takes (a compound: its TAG_End; arrays and strings: their length).
+        static constexpr size_t kMinBytes[13] = {1, 1, 2, 4, 8, 4, 8, 4, 2, 5, 1, 4, 4};
+        const size_t len = array_length(kMinBytes[et], "list");
         if (et == 0 && len > 0) fail("a list of TAG_End with " + std::to_string(len) + " entries");
+        reserve_table(len, et, "list");
         lua_createtable(L_, int(len), 0);
         for (size_t i = 0; i < len; ++i) {
           path_.push_back(index_label(i + 1));
@@ -343,6 +385,7 @@ class NbtReader {
       }
       case 11: {
         const size_t len = array_length(4, "int array");
+        reserve_table(len, 3, "int array");
         lua_createtable(L_, int(len), 0);
         for (size_t i = 0; i < len; ++i) {
           lua_pushinteger(L_, int32_t(uint32_t(be(4))));
@@ -535,6 +578,16 @@ int l_map_int16(lua_State* L) {
 }
 
 }  // namespace
+
+uint64_t decompress_limit(lua_State* L, int idx, const char* fn) {
+  if (lua_isnoneornil(L, idx)) return kDefaultDecompressLimit;
+  int ok = 0;
+  const lua_Integer v = lua_tointegerx(L, idx, &ok);
+  if (!ok || v < 0)
+    throw Error(std::string(fn) + ": the output limit must be a non-negative integer (bytes), got " +
+                (ok ? std::to_string(v) : type_name(L, idx)));
+  return uint64_t(v);
+}
 
 void open_data(lua_State* L, int torte_index) {
   luaL_newmetatable(L, kLongsName);

@@ -3,6 +3,7 @@
 // torte.data (see lua/bind_data.cc for the whole library).
 //
 //   local raw = torte.data.lz4_block(s, decompressed_size [, i [, j]])   -- one raw LZ4 block (liblz4), s:sub(i, j)
+//     (a size over 255x the block's bytes is refused as corrupt before anything is allocated)
 //   local z = torte.data.lz4_compress(s [, i [, j]])     -- one raw LZ4 block (LZ4_compress_default)
 //   local h = torte.data.xxhash32(s [, seed=0 [, i [, j]]])   -- XXH32 of s:sub(i, j), an integer in [0, 2^32)
 #include <lz4.h>
@@ -13,6 +14,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/memory_budget.h"
 #include "types.h"
 
 namespace torte::lua {
@@ -55,6 +57,12 @@ int l_lz4_block(lua_State* L) {
     }
     throw Error(std::string(fn) + ": empty input for " + std::to_string(size) + " bytes");
   }
+  // A block cannot decode to more than 255 bytes per input byte (each length byte adds at most 255): a larger
+  // size is corrupt, and is refused before the output is allocated.
+  if (uint64_t(size) > 255 * uint64_t(in.size()) + 15)
+    throw Error(std::string(fn) + ": corrupt input: " + std::to_string(in.size()) + " bytes cannot decode to " +
+                std::to_string(size) + " bytes (an LZ4 block expands 255-fold at most)");
+  reserve_memory(uint64_t(size), std::string(fn) + " output");
   std::string out(size_t(size), '\0');
   // LZ4_decompress_safe never reads or writes out of bounds; a negative result is a malformed or truncated block,
   // or one that would decompress to more than `size` bytes.

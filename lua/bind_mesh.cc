@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/memory_budget.h"
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_normals.h"
 #include "geometry/subdivide.h"
@@ -56,7 +57,9 @@ int l_subdivide(lua_State* L) {
   try {
     out = subdivide(*mesh, levels, float(displacement), uint64_t(seed));
   } catch (const Error& e) {
-    throw Error(std::string(fn) + ": " + e.what());
+    std::string_view why = e.what();
+    if (why.starts_with("subdivide: ")) why.remove_prefix(11);  // the function is named once
+    throw Error(std::string(fn) + ": " + std::string(why));
   }
   push_object(L, std::make_shared<TriangleMesh>(std::move(out)));
   return 1;
@@ -65,6 +68,9 @@ int l_subdivide(lua_State* L) {
 // mesh:smooth_normals(): a copy with angle-weighted vertex normals (scans usually come without any).
 int mesh_smooth_normals(lua_State* L) {
   auto mesh = check_mesh(L, 1, "torte.mesh.smooth_normals");
+  const uint64_t copy_bytes = mesh->vertex_count() * sizeof(float) * 8 + mesh->indices.size() * sizeof(uint32_t);
+  reserve_memory(copy_bytes, "torte.mesh.smooth_normals: a copy of " + std::to_string(mesh->triangle_count()) +
+                                 " triangles");
   auto out = std::make_shared<TriangleMesh>(*mesh);
   compute_smooth_normals(*out);
   push_object(L, std::move(out));

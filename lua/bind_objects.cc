@@ -108,7 +108,12 @@ int l_environment(lua_State* L) {
   if (!is_similarity(to_world)) kw.fail("transform", "must be a rotation");
   auto l = new_light(kw, LightKind::Environment);
   try {
-    l->environment = make_environment_map(read_image(file), to_world, scale);
+    const Image image = read_image(file);  // its errors name the file
+    try {
+      l->environment = make_environment_map(image, to_world, scale);
+    } catch (const Error& e) {
+      throw Error("'" + file + "': " + e.what());
+    }
   } catch (const Error& e) {
     throw Error(kw.function() + ": " + e.what());
   }

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "core/interrupt.h"
+#include "core/memory_budget.h"
 #include "film/image_io.h"
 #include "progress.h"
 #include "types.h"
@@ -247,8 +248,14 @@ int l_render(lua_State* L) {
   if (auto f = kw.object<Filter>("filter", true)) s.filter = *f;
   kw.finish();
   if (s.width <= 0 || s.height <= 0) kw.fail("width", "and 'height' must be positive");
-  if (s.spp <= 0) kw.fail("spp", "must be positive");
-  if (s.max_depth < 0) kw.fail("max_depth", "must be non-negative");
+  if (uint64_t(s.width) * uint64_t(s.height) > kMaxRenderPixels)
+    kw.fail("width", "x 'height' = " + std::to_string(s.width) + "x" + std::to_string(s.height) + " = " +
+                         std::to_string(uint64_t(s.width) * uint64_t(s.height)) +
+                         " pixels, more than the limit of " + std::to_string(kMaxRenderPixels) + " (2^28)");
+  if (s.spp <= 0 || s.spp > kMaxSpp)
+    kw.fail("spp", "must be in [1, " + std::to_string(kMaxSpp) + "], got " + std::to_string(s.spp));
+  if (s.max_depth < 0 || s.max_depth > 10000)
+    kw.fail("max_depth", "must be in [0, 10000], got " + std::to_string(s.max_depth));
   if (s.vpl_sets < 1 || s.vpl_sets > 65536) kw.fail("vpl_sets", "must be in [1, 65536]");
   if (s.light_paths < 1 || s.light_paths > (1 << 24)) kw.fail("light_paths", "must be in [1, 16777216]");
   if (!(s.g_limit > 0)) kw.fail("g_limit", "must be positive (relative to 1/R^2, R the scene's bounding radius)");
@@ -256,6 +263,9 @@ int l_render(lua_State* L) {
   if (ctx.spp_override > 0) s.spp = ctx.spp_override;
   if (ctx.seed_override >= 0) s.seed = uint64_t(ctx.seed_override);
   if (ctx.interrupted) throw Error("torte.render: not started, the run was interrupted");
+  // The film is checked before the scene is built, so an over-large image fails at once.
+  reserve_memory(render_memory_bytes(s), "torte.render: the " + std::to_string(s.width) + "x" +
+                                             std::to_string(s.height) + " image's film");
 
   const auto t0 = std::chrono::steady_clock::now();
   std::shared_ptr<Scene> flat;
@@ -277,7 +287,13 @@ int l_render(lua_State* L) {
 
   ConsoleProgress progress("render");
   auto img = std::make_shared<RenderedImage>();
-  RenderOutput out = render(*flat, s, ctx.quiet ? nullptr : &progress, ctx.cancel);
+  RenderOutput out;
+  try {
+    out = render(*flat, s, ctx.quiet ? nullptr : &progress, ctx.cancel);
+  } catch (...) {
+    progress.finish();
+    throw;
+  }
   progress.finish();
   img->image = std::move(out.image);
   img->stats = out.stats;

@@ -176,7 +176,10 @@ std::vector<double> KwArgs::numbers(const char* key) {
   }
   std::vector<double> out;
   const lua_Integer n = lua_Integer(lua_rawlen(L_, -1));
-  out.reserve(size_t(n));
+  // A table's length can be a border far past its entries ({[1] = 1, [2] = 2, [4] = 4, ..., [2^40] = 1} has
+  // length 2^40): reserve at most 2^20 entries up front; a real array grows the vector as its entries are read,
+  // a sparse one fails at its first missing entry.
+  out.reserve(size_t(std::min<lua_Integer>(n, lua_Integer(1) << 20)));
   for (lua_Integer i = 1; i <= n; ++i) {
     lua_rawgeti(L_, -1, i);
     if (lua_istable(L_, -1)) {  // nested {x, y, z}: flatten

@@ -48,6 +48,11 @@ void open_textures(lua_State* L, int torte_index);   // torte.texture.* (lua/bin
 void open_voxels(lua_State* L, int torte_index);     // torte.voxel.*, torte.shape.voxels (lua/bind_voxel.cc)
 void open_data(lua_State* L, int torte_index);       // torte.data.*: files, zlib/gzip, NBT, bit fields (lua/bind_data.cc)
 void set_data_lz4_functions(lua_State* L);  // lz4_block, lz4_compress, xxhash32 into the table on top of the stack
+// Output bound of torte.data's decompressors when the script gives none: generous for a Minecraft chunk (a few
+// MB at most), small enough that a compression bomb fails at once.
+constexpr uint64_t kDefaultDecompressLimit = uint64_t(256) << 20;
+// The optional output limit argument at `idx` of decompressor `fn`: kDefaultDecompressLimit when nil.
+uint64_t decompress_limit(lua_State* L, int idx, const char* fn);
 // torte.shape.mesh's mesh=<torte.mesh> or file="path" (loaded now); nullptr when neither key is given.
 std::shared_ptr<const TriangleMesh> mesh_argument(KwArgs& kw);
 

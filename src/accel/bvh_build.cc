@@ -19,6 +19,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/memory_budget.h"
 
 namespace torte {
 namespace {
@@ -517,6 +518,11 @@ BinaryBvh build_binary_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuild
   check_options(options);
   // Leaf child references carry the first primitive below kLeafFlag.
   if (prim_bounds.size() >= size_t(kLeafFlag)) throw Error("BVH build: too many primitives (2^31 at most).");
+  // The builder's peak, before any of it is allocated: the references, the 2n - 1 node scratch, and the nodes
+  // and primitive order copied out of it.
+  const uint64_t n_prims = prim_bounds.size();
+  reserve_memory(n_prims * (sizeof(PrimRef) + 4 * sizeof(BinaryBvhNode) + sizeof(uint32_t)),
+                 "BVH build of " + std::to_string(n_prims) + " primitives");
   BinaryBvh bvh;
   RangeBounds root;
   HugePageVector<PrimRef> refs = make_refs(prim_bounds, options.parallel, &root);

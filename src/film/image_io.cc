@@ -11,6 +11,10 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/file_read.h"
+#include "core/memory_budget.h"
+#include "core/quiet_stderr.h"
+#include "core/text.h"
 
 namespace torte {
 
@@ -35,15 +39,11 @@ namespace {
 }
 
 [[noreturn]] void read_error(const std::string& path, const std::string& reason) {
-  throw Error("cannot read image '" + path + "': " + reason);
+  throw Error("cannot read image '" + escape_text(path) + "': " + reason);
 }
 
-// OIIO's messages can span lines and end in a newline; keep ours one line.
-std::string one_line(std::string s) {
-  std::replace(s.begin(), s.end(), '\n', ' ');
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
-  return s.empty() ? "unknown OpenImageIO error" : s;
-}
+// OIIO's messages can span lines, repeat a line and end in a newline; keep ours one line.
+std::string one_line(const std::string& s) { return one_line_message(s, "no message from OpenImageIO"); }
 
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
@@ -122,15 +122,33 @@ void write_image(const Image& image, const std::string& path, const WriteOptions
 }
 
 Image read_image(const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) read_error(path, fs::exists(path, ec) ? "not a regular file" : "no such file");
-  auto in = OIIO::ImageInput::open(path);
+  if (const std::string problem = regular_file_problem(path); !problem.empty()) read_error(path, problem);
+  std::unique_ptr<OIIO::ImageInput> in;
+  {
+    QuietStderr quiet;  // libpng prints its own line for a broken file; OIIO's error string has the message
+    in = OIIO::ImageInput::open(path);
+  }
   if (!in) read_error(path, one_line(OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();
   const int w = spec.width, h = spec.height, nc = spec.nchannels;
   if (w <= 0 || h <= 0 || nc <= 0) read_error(path, "the file holds no pixels");
-  std::vector<float> buf(size_t(w) * size_t(h) * size_t(nc));
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, buf.data())) read_error(path, one_line(in->geterror()));
+  // Sizes come from the header: checked before anything is allocated, naming the file and the size.
+  const std::string what = "image '" + escape_text(path) + "' (" + std::to_string(w) + "x" + std::to_string(h) + ", " +
+                           std::to_string(nc) + " channels)";
+  const uint64_t pixels = checked_bytes(uint64_t(w), uint64_t(h), what);
+  const uint64_t decoded = checked_bytes(pixels, uint64_t(nc) * sizeof(float), what);
+  reserve_memory(checked_bytes(pixels, sizeof(Rgb), what) + decoded, what);
+  std::vector<float> buf(size_t(pixels) * size_t(nc));
+  bool ok;
+  {
+    QuietStderr quiet;
+    ok = in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, buf.data());
+  }
+  // Some readers (PPM) report a short file without a message.
+  if (!ok) {
+    const std::string why = one_line_message(in->geterror(), "");
+    read_error(path, "the pixel data is truncated or corrupt" + (why.empty() ? std::string() : " (" + why + ")"));
+  }
 
   // 8-bit PNG and JPEG are sRGB whatever they are tagged; other 8-bit files (BMP, TGA, ...) carry no colour
   // space and are display-referred by convention, as write_image makes them.

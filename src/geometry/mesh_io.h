@@ -2,17 +2,15 @@
 #pragma once
 #include <string>
 
+#include "core/file_read.h"  // read_file_bytes, which the readers parse from
 #include "geometry/mesh.h"
 
 namespace torte {
 
 // Reads a .ply or .obj file (extension compared case-insensitively); an OBJ's materials and groups are dropped
-// (use read_obj for them). Throws torte::Error naming the file for a missing or unreadable file, an unknown
-// extension or bad content.
+// (use read_obj for them). Throws torte::Error naming the file for a missing, unreadable, non-regular or
+// over-large file (core/file_read.h), an unknown extension or bad content. The readers parse from memory (one
+// read and pointer walking is several times faster than stream extraction).
 TriangleMesh load_mesh(const std::string& path);
-
-// The whole file as bytes. Throws torte::Error("<path>: cannot open ...") when it cannot be read. The readers
-// parse from memory because one read and pointer walking is several times faster than stream extraction.
-std::string read_file_bytes(const std::string& path);
 
 }  // namespace torte

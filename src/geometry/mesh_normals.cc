@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "core/memory_budget.h"
 
 #include "core/interrupt.h"
 
@@ -9,6 +12,8 @@ namespace torte {
 
 void compute_smooth_normals(TriangleMesh& mesh) {
   const size_t nv = mesh.vertex_count();
+  reserve_memory(uint64_t(nv) * 2 * sizeof(Vec3f),
+                 "smooth normals of " + std::to_string(nv) + " vertices");  // the sums and the normals
   std::vector<Vec3f> sum(nv);
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     if ((t & 0xffff) == 0) throw_if_interrupted("smoothing normals");

@@ -6,6 +6,8 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
+#include "core/text.h"
 #include "geometry/mesh_io.h"
 
 namespace torte {
@@ -97,7 +99,7 @@ class Parser {
 
  private:
   [[noreturn]] void fail(const std::string& problem) const {
-    throw Error(name_ + ": line " + std::to_string(line_) + ": " + problem);
+    throw Error(escape_text(name_) + ": line " + std::to_string(line_) + ": " + problem);
   }
 
   void statement(std::string_view line) {
@@ -128,8 +130,8 @@ class Parser {
       const std::string name(tok.remainder());
       auto it = material_index_.find(name);
       if (it == material_index_.end()) {
-        out_.warnings.push_back(name_ + ": line " + std::to_string(line_) + ": material '" + name +
-                                "' is not defined in any mtllib file");
+        out_.warnings.push_back(name_ + ": line " + std::to_string(line_) + ": material " + quote_text(name, 60) +
+                                " is not defined in any mtllib file");
         it = material_index_.emplace(name, int32_t(out_.materials.size())).first;
         {
           ObjMaterial mat;
@@ -143,7 +145,7 @@ class Parser {
     } else {
       for (const char* ignored : kIgnored)
         if (key == ignored) return;
-      fail("unknown statement '" + std::string(key) + "'");
+      fail("unknown statement " + quote_text(key));
     }
   }
 
@@ -152,7 +154,7 @@ class Parser {
     int n = 0;
     for (std::string_view t = tok.next(); !t.empty() && t[0] != '#'; t = tok.next(), ++n) {
       float f;
-      if (!parse_float(t, &f)) fail(std::string(t).insert(0, 1, '\'') + "' is not a number");
+      if (!parse_float(t, &f)) fail(quote_text(t) + " is not a number");
       if (n < max_count) out[n] = f;
     }
     if (n < min_count) fail(what);
@@ -164,7 +166,7 @@ class Parser {
     if (!t.empty() && t[0] == '+') t.remove_prefix(1);
     const auto r = std::from_chars(t.data(), t.data() + t.size(), i);
     if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
-      fail("bad " + std::string(kind) + " index '" + std::string(t) + "'");
+      fail("bad " + std::string(kind) + " index " + quote_text(t));
     if (i == 0) fail(std::string(kind) + " index 0 is invalid (OBJ indices start at 1)");
     const int64_t zero_based = i > 0 ? i - 1 : int64_t(count) + i;
     if (zero_based < 0 || zero_based >= int64_t(count))
@@ -184,11 +186,17 @@ class Parser {
         const std::string_view ts = c.substr(s1 + 1, s2 == std::string_view::npos ? std::string_view::npos : s2 - s1 - 1);
         if (!ts.empty()) t = index(ts, tu_.size(), "texture coordinate");
         if (s2 != std::string_view::npos) n = index(c.substr(s2 + 1), vn_.size(), "normal");
-        else if (ts.empty()) fail("bad face vertex '" + std::string(c) + "'");
+        else if (ts.empty()) fail("bad face vertex " + quote_text(c));
       }
       corners_.push_back(vertex(v, t, n));
     }
     if (corners_.size() < 3) fail("a face needs at least 3 vertices");
+    // A line of a few bytes can make many triangles (f 1 1 1 1 ...): every 2^20 of them the next batch is
+    // checked against the memory budget.
+    const size_t before = out_.mesh.triangle_count();
+    if ((before + corners_.size()) >> 20 != before >> 20)
+      reserve_memory((uint64_t(1) << 20) * 40, escape_text(name_) + ": line " + std::to_string(line_) +
+                                                  ": the mesh (" + std::to_string(before) + " triangles so far)");
     // A fan around the first corner, as cornell-box.lua splits its quads.
     for (size_t k = 1; k + 1 < corners_.size(); ++k) {
       out_.mesh.add_triangle(corners_[0], corners_[k], corners_[k + 1]);
@@ -250,7 +258,7 @@ class Parser {
     int32_t current = -1;  // an index: materials may reallocate while the file adds more
     for_each_line(text, [&](size_t n, std::string_view line) {
       auto bad = [&](const std::string& problem) {
-        throw Error(path + ": line " + std::to_string(n) + ": " + problem);
+        throw Error(escape_text(path) + ": line " + std::to_string(n) + ": " + problem);
       };
       if (line.empty() || line[0] == '#') return;
       Tokens tok{line};
@@ -277,7 +285,7 @@ class Parser {
         float c[3];
         int count = 0;
         for (std::string_view t = tok.next(); !t.empty() && count < 3; t = tok.next(), ++count)
-          if (!parse_float(t, &c[count])) bad("'" + std::string(t) + "' is not a number");
+          if (!parse_float(t, &c[count])) bad(quote_text(t) + " is not a number");
         if (count != 1 && count != 3) bad(std::string(key) + " needs 1 or 3 numbers");
         const Rgb rgb = count == 1 ? Rgb(c[0]) : Rgb(c[0], c[1], c[2]);
         (key == "Kd" ? out_.materials[current].kd : out_.materials[current].ke) = rgb;

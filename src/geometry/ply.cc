@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
+#include "core/text.h"
 #include "geometry/mesh_io.h"
 
 namespace torte {
@@ -82,24 +84,25 @@ Header parse_header(std::string_view data, const std::string& name) {
   bool has_format = false;
   size_t pos = 0, line_no = 0;
   auto fail = [&](const std::string& problem) -> void {
-    throw Error(name + ": header line " + std::to_string(line_no) + ": " + problem);
+    throw Error(escape_text(name) + ": header line " + std::to_string(line_no) + ": " + problem);
   };
   for (;;) {
     if (pos >= data.size()) {
-      if (line_no == 0) throw Error(name + ": the file is empty");
-      throw Error(name + ": the header is truncated (no end_header line)");
+      if (line_no == 0) throw Error(escape_text(name) + ": the file is empty");
+      throw Error(escape_text(name) + ": the header is truncated (no end_header line)");
     }
     const size_t eol = data.find('\n', pos);
     if (eol == std::string_view::npos) {  // an unterminated last line cannot hold a whole header
-      if (pos == 0 && data.substr(0, 3) != "ply") throw Error(name + ": not a PLY file (the first line is not 'ply')");
-      throw Error(name + ": the header is truncated (no end_header line)");
+      if (pos == 0 && data.substr(0, 3) != "ply")
+        throw Error(escape_text(name) + ": not a PLY file (the first line is not 'ply')");
+      throw Error(escape_text(name) + ": the header is truncated (no end_header line)");
     }
     std::string_view line = data.substr(pos, eol - pos);
     pos = eol + 1;
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (line_no == 1) {
-      if (line != "ply") throw Error(name + ": not a PLY file (the first line is not 'ply')");
+      if (line != "ply") throw Error(escape_text(name) + ": not a PLY file (the first line is not 'ply')");
       continue;
     }
     const std::vector<std::string_view> t = split(line);
@@ -112,40 +115,41 @@ Header parse_header(std::string_view data, const std::string& name) {
       return h;
     }
     if (key == "format") {
-      if (t.size() != 3) fail("bad format line '" + std::string(line) + "'");
+      if (t.size() != 3) fail("bad format line " + quote_text(line));
       if (t[1] == "ascii") h.format = Format::Ascii;
       else if (t[1] == "binary_little_endian") h.format = Format::BinaryLE;
       else if (t[1] == "binary_big_endian") h.format = Format::BinaryBE;
-      else fail("unknown format '" + std::string(t[1]) + "'");
-      if (t[2] != "1.0" && t[2] != "1") fail("unsupported PLY version '" + std::string(t[2]) + "'");
+      else fail("unknown format " + quote_text(t[1]));
+      if (t[2] != "1.0" && t[2] != "1") fail("unsupported PLY version " + quote_text(t[2]));
       has_format = true;
     } else if (key == "element") {
       Element e;
-      if (t.size() != 3) fail("bad element line '" + std::string(line) + "'");
+      if (t.size() != 3) fail("bad element line " + quote_text(line));
       e.name = t[1];
       const auto r = std::from_chars(t[2].data(), t[2].data() + t[2].size(), e.count);
       if (r.ec != std::errc() || r.ptr != t[2].data() + t[2].size())
-        fail("element '" + e.name + "' has a bad count '" + std::string(t[2]) + "'");
+        fail("element " + quote_text(e.name) + " has a bad count " + quote_text(t[2]));
       h.elements.push_back(std::move(e));
     } else if (key == "property") {
       if (h.elements.empty()) fail("property before any element");
       Element& e = h.elements.back();
       Property p;
       const bool list = t.size() >= 2 && t[1] == "list";
-      if (t.size() != (list ? 5u : 3u)) fail("bad property line '" + std::string(line) + "'");
+      if (t.size() != (list ? 5u : 3u)) fail("bad property line " + quote_text(line));
       p.list = list;
       p.name = t.back();
       const std::string_view type = list ? t[3] : t[1];
       if (!parse_type(type, &p.type))
-        fail("unsupported type '" + std::string(type) + "' of property '" + p.name + "' of element '" + e.name +
-             "'");
+        fail("unsupported type " + quote_text(type) + " of property " + quote_text(p.name) + " of element " +
+             quote_text(e.name));
       if (list) {
         if (!parse_type(t[2], &p.count_type) || is_float(p.count_type))
-          fail("unsupported list count type '" + std::string(t[2]) + "' of property '" + p.name + "' (an integer type is needed)");
+          fail("unsupported list count type " + quote_text(t[2]) + " of property " + quote_text(p.name) +
+               " (an integer type is needed)");
       }
       e.props.push_back(std::move(p));
     } else {
-      fail("unknown keyword '" + std::string(key) + "'");
+      fail("unknown keyword " + quote_text(key));
     }
   }
 }
@@ -240,11 +244,11 @@ class AsciiSource {
         static const int64_t kMin[] = {-128, 0, -32768, 0, INT32_MIN, 0}, kMax[] = {127, 255, 32767, 65535,
                                                                                     INT32_MAX, UINT32_MAX};
         if (i < kMin[int(t)] || i > kMax[int(t)])
-          throw BadValue{"value " + std::string(tok) + " is out of range for its type"};
+          throw BadValue{"value " + quote_text(tok) + " is out of range for its type"};
         return double(i);
       }
     }
-    throw BadValue{"'" + std::string(tok) + "' is not a valid " + (is_float(t) ? "number" : "integer")};
+    throw BadValue{quote_text(tok) + " is not a valid " + (is_float(t) ? "number" : "integer")};
   }
   void skip(Type, uint64_t n) {
     for (uint64_t i = 0; i < n; ++i) token();
@@ -284,6 +288,7 @@ template <class Src>
 void read_body(Src& src, const Header& h, const Element* vertex, const Element* face, TriangleMesh& m,
                const std::string& name) {
   const bool ascii = h.format == Format::Ascii;
+  const uint64_t body_bytes = src.remaining();
   bool slot_used[kSlotCount] = {};
   for (const Property& p : vertex->props)
     if (p.slot >= 0) slot_used[p.slot] = true;
@@ -327,7 +332,12 @@ void read_body(Src& src, const Header& h, const Element* vertex, const Element* 
                                std::to_string(vertex->count) + " vertices)"};
               poly.push_back(uint32_t(idx));
             }
-            // Polygons become a fan around their first vertex; fewer than 3 vertices make no triangle.
+            // Polygons become a fan around their first vertex; fewer than 3 vertices make no triangle. Past the
+            // triangle per face reserved for, every 2^20 more are checked against the memory budget.
+            const size_t before = m.triangle_count();
+            if (poly.size() > 3 && before >= face->count && (before + poly.size()) >> 20 != before >> 20)
+              reserve_memory((uint64_t(1) << 20) * 12,
+                             escape_text(name) + ": " + std::to_string(before) + " triangles from polygons");
             for (size_t k = 1; k + 1 < poly.size(); ++k) m.add_triangle(poly[0], poly[k], poly[k + 1]);
           }
           src.end_element();
@@ -340,11 +350,19 @@ void read_body(Src& src, const Header& h, const Element* vertex, const Element* 
         }
       }
     } catch (const EndOfData&) {
-      throw Error(name + ": " + e.name + " " + std::to_string(i) + " of " + std::to_string(e.count) +
-                  ": file ends early");
+      // When the count alone cannot fit the file, say so: a corrupt count rather than a cut file.
+      const uint64_t body = body_bytes, least = e.min_bytes(ascii);
+      const std::string why = e.count > body / least + 1
+                                  ? " (the header declares " + std::to_string(e.count) + ", which need at least " +
+                                        std::to_string(least) + " bytes each; " + std::to_string(body) +
+                                        " bytes follow the header)"
+                                  : std::string();
+      throw Error(escape_text(name) + ": " + escape_text(e.name, 40) + " " + std::to_string(i) + " of " +
+                  std::to_string(e.count) + ": file ends early" + why);
     } catch (const BadValue& b) {
       const size_t line = line_of(src);
-      throw Error(name + ": " + e.name + " " + std::to_string(i) + " of " + std::to_string(e.count) +
+      throw Error(escape_text(name) + ": " + escape_text(e.name, 40) + " " + std::to_string(i) + " of " +
+                  std::to_string(e.count) +
                   (line ? " (line " + std::to_string(line) + ")" : std::string()) + ": " + b.problem);
     }
   }
@@ -360,7 +378,7 @@ void assign_slots(Element& vertex, Element* face, const std::string& name) {
   const char* xyz[] = {"x", "y", "z"};
   for (int s = 0; s < 3; ++s) {
     Property* p = find(xyz[s]);
-    if (!p) throw Error(name + ": the vertex element has no scalar property '" + xyz[s] + "'");
+    if (!p) throw Error(escape_text(name) + ": the vertex element has no scalar property '" + xyz[s] + "'");
     p->slot = s;
   }
   Property *nx = find("nx"), *ny = find("ny"), *nz = find("nz");
@@ -376,12 +394,12 @@ void assign_slots(Element& vertex, Element* face, const std::string& name) {
   if (!face) return;
   for (Property& p : face->props)
     if (p.name == "vertex_indices" || p.name == "vertex_index") {
-      if (!p.list) throw Error(name + ": the face property '" + p.name + "' must be a list");
-      if (is_float(p.type)) throw Error(name + ": the face property '" + p.name + "' must hold integers");
+      if (!p.list) throw Error(escape_text(name) + ": the face property '" + p.name + "' must be a list");
+      if (is_float(p.type)) throw Error(escape_text(name) + ": the face property '" + p.name + "' must hold integers");
       p.slot = 0;
       return;
     }
-  throw Error(name + ": the face element has no 'vertex_indices' list");
+  throw Error(escape_text(name) + ": the face element has no 'vertex_indices' list");
 }
 
 }  // namespace
@@ -393,9 +411,23 @@ TriangleMesh parse_ply(std::string_view data, const std::string& name) {
     if (e.name == "vertex" && !vertex) vertex = &e;
     if (e.name == "face" && !face) face = &e;
   }
-  if (!vertex) throw Error(name + ": the file has no vertex element");
-  if (vertex->count > UINT32_MAX) throw Error(name + ": too many vertices (" + std::to_string(vertex->count) + ")");
+  if (!vertex) throw Error(escape_text(name) + ": the file has no vertex element");
+  if (vertex->count > UINT32_MAX)
+    throw Error(escape_text(name) + ": the header declares " + std::to_string(vertex->count) +
+                " vertices, more than the limit of 4294967295 (2^32 - 1)");
   assign_slots(*vertex, face, name);
+  {
+    // What the counts ask for (a triangle per face; larger polygons are checked as they come), as far as the
+    // file can hold them: vertex arrays of the properties used, and the index triples.
+    const bool ascii = h.format == Format::Ascii;
+    const uint64_t body = data.size() - h.body;
+    const uint64_t nv = std::min<uint64_t>(vertex->count, body / vertex->min_bytes(ascii) + 1);
+    const uint64_t nf = face ? std::min<uint64_t>(face->count, body / face->min_bytes(ascii) + 1) : 0;
+    uint64_t per_vertex = 12;
+    for (const Property& p : vertex->props) per_vertex += p.slot >= kNX ? 4 : 0;
+    reserve_memory(nv * per_vertex + nf * 12, escape_text(name) + " (" + std::to_string(vertex->count) +
+                                                  " vertices, " + std::to_string(face ? face->count : 0) + " faces)");
+  }
 
   TriangleMesh m;
   const char* body = data.data() + h.body;

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <numeric>
 #include <string>
@@ -16,13 +17,14 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/memory_budget.h"
 
 namespace torte {
 
 namespace {
 
 constexpr size_t kGrain = 1 << 14;
-constexpr uint64_t kMaxTriangles = uint64_t(1) << 31;
+constexpr uint64_t kMaxTriangles = kMaxSubdividedTriangles;
 
 template <class Fn>
 void parallel(size_t n, Fn fn) {
@@ -209,11 +211,43 @@ void compute_vertex_normals(TriangleMesh& m) {
   });
 }
 
+SubdivisionSize subdivision_size(const TriangleMesh& mesh, int levels, bool displaced) {
+  SubdivisionSize r;
+  const uint64_t per_vertex = 12 + (mesh.has_normals() ? 12 : 0) + (mesh.has_uvs() ? 8 : 0) + (displaced ? 12 : 0);
+  uint64_t t = mesh.triangle_count(), v = mesh.vertex_count();
+  r.triangles = t, r.vertices = v;
+  for (int level = 1; level <= levels; ++level) {
+    if (t > kMaxTriangles) {  // 4^levels would overflow long before the memory matters
+      r.triangles = UINT64_MAX;
+      return r;
+    }
+    // One level holds its input and output meshes and the edge scratch (8 + 4 bytes per half-edge, 8 per
+    // vertex). Each triangle adds at most 3 edges, hence 3 vertices (a closed mesh: 1.5).
+    const uint64_t t_out = 4 * t, v_out = v + 3 * t;
+    const uint64_t peak = 12 * t + per_vertex * v + 12 * t_out + per_vertex * v_out + 36 * t + 8 * v;
+    r.peak_bytes = std::max(r.peak_bytes, peak);
+    t = t_out, v = v_out;
+  }
+  r.triangles = t, r.vertices = v;
+  return r;
+}
+
 TriangleMesh subdivide(const TriangleMesh& mesh, int levels, float displacement, uint64_t seed) {
   if (levels < 0) throw Error("subdivide: levels must be >= 0, got " + std::to_string(levels));
   if (!std::isfinite(displacement)) throw Error("subdivide: displacement must be finite");
   mesh.validate("subdivide");
   if (levels == 0) return mesh;
+  // The whole result is checked before the first level runs.
+  const SubdivisionSize size = subdivision_size(mesh, levels, displacement != 0);
+  const std::string what = "subdivide: " + std::to_string(levels) + " levels of " +
+                           std::to_string(mesh.triangle_count()) + " triangles";
+  if (size.triangles > kMaxTriangles) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.3g", double(mesh.triangle_count()) * std::pow(4.0, levels));
+    throw Error(what + " would give " + count + " triangles, more than the limit of 2^31 (" +
+                std::to_string(kMaxTriangles) + ")");
+  }
+  reserve_memory(size.peak_bytes, what + " (" + std::to_string(size.triangles) + " triangles)");
   std::vector<Vec3f> dn;
   if (displacement != 0) dn = welded_normals(mesh);
   std::vector<Vec3f>* dn_ptr = displacement != 0 ? &dn : nullptr;

@@ -20,8 +20,18 @@ namespace torte {
 // When the input has vertex normals and displacement != 0, the output's normals are recomputed from the
 // displaced surface (area-weighted face normals), so shading shows the new detail.
 //
-// Throws torte::Error for levels < 0, an invalid input mesh, or a result over 2^31 triangles.
+// Throws torte::Error for levels < 0, an invalid input mesh, or a result over 2^31 triangles or the memory budget
+// (both checked before the first level runs).
 TriangleMesh subdivide(const TriangleMesh& mesh, int levels, float displacement = 0, uint64_t seed = 0);
+
+constexpr uint64_t kMaxSubdividedTriangles = uint64_t(1) << 31;
+
+// What subdivide(mesh, levels, ...) makes: triangles (UINT64_MAX past 2^31 x 4), vertices at most, and the most
+// bytes one level holds at once (input, output and edge scratch).
+struct SubdivisionSize {
+  uint64_t triangles = 0, vertices = 0, peak_bytes = 0;
+};
+SubdivisionSize subdivision_size(const TriangleMesh& mesh, int levels, bool displaced);
 
 // Area-weighted vertex normals from the triangles (zero for a vertex only on degenerate triangles).
 void compute_vertex_normals(TriangleMesh& mesh);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "film/image.h"
 
 namespace torte {
@@ -69,6 +70,11 @@ std::shared_ptr<const EnvironmentMap> make_environment_map(const Image& image, c
   if (!is_similarity(to_world)) throw Error("environment map: the transform must be a rotation");
   if (!scale.is_finite() || scale.r < 0 || scale.g < 0 || scale.b < 0)
     throw Error("environment map: scale must be finite and non-negative");
+  // The radiance copy, the weights, and the sampling tables (a function and a CDF value per texel, per row).
+  const uint64_t texels = uint64_t(image.width) * uint64_t(image.height);
+  reserve_memory(checked_bytes(texels, sizeof(Rgb) + 3 * sizeof(float), "environment map"),
+                 "environment map of " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                     " pixels");
   auto env = std::make_shared<EnvironmentMap>();
   env->width = image.width;
   env->height = image.height;

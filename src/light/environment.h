@@ -46,8 +46,8 @@ struct EnvironmentMap {
   Rgb lookup(Vec3f world_dir) const;
 };
 
-// Throws torte::Error for an empty image, negative or non-finite pixels, or a transform that is not a rotation
-// (times a uniform scale, which does not matter for directions).
+// Throws torte::Error for an empty image, negative or non-finite pixels, a transform that is not a rotation
+// (times a uniform scale, which does not matter for directions), or tables over the memory budget.
 std::shared_ptr<const EnvironmentMap> make_environment_map(const Image& image, const Transform& to_world, Rgb scale);
 
 // True when the linear part of t is a rotation times a uniform scale (within a small tolerance); *scale receives

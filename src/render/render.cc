@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "render/igi.h"
 #include "render/wavefront.h"
 
@@ -44,8 +45,12 @@ std::vector<int> make_passes(int spp) {
 void validate(const Scene& scene, const RenderSettings& s) {
   if (!scene.has_camera) throw Error("the scene has no camera");
   if (s.width <= 0 || s.height <= 0) throw Error("image width and height must be positive");
-  if (int64_t(s.width) * s.height > (int64_t(1) << 28)) throw Error("image is too large");
-  if (s.spp <= 0) throw Error("spp must be positive");
+  if (uint64_t(s.width) * uint64_t(s.height) > kMaxRenderPixels)
+    throw Error("a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image has " +
+                std::to_string(uint64_t(s.width) * uint64_t(s.height)) + " pixels, more than the limit of " +
+                std::to_string(kMaxRenderPixels) + " (2^28)");
+  if (s.spp <= 0 || s.spp > kMaxSpp)
+    throw Error("spp must be in [1, " + std::to_string(kMaxSpp) + "], got " + std::to_string(s.spp));
   if (s.max_depth < 0 || s.max_depth > 10000) throw Error("max_depth must be in [0, 10000]");
   if (s.tile_size <= 0) throw Error("tile size must be positive");
   if (s.vpl_sets < 1 || s.vpl_sets > 65536) throw Error("vpl_sets must be in [1, 65536]");
@@ -54,11 +59,25 @@ void validate(const Scene& scene, const RenderSettings& s) {
   if (!(s.vpl_roulette >= 0 && s.vpl_roulette <= 1)) throw Error("vpl_roulette must be in [0, 1]");
 }
 
+// A failed image lookup returns black: the render stops and fails naming the file instead of writing that.
+std::string texture_failure(const Scene& scene) {
+  for (const auto& image : scene.textures.images())
+    if (std::string f = image->failure(); !f.empty()) return f;
+  return {};
+}
+
 }  // namespace
+
+uint64_t render_memory_bytes(const RenderSettings& s) {
+  const uint64_t pixels = uint64_t(std::max(s.width, 0)) * uint64_t(std::max(s.height, 0));
+  return pixels * (sizeof(PixelSum) + sizeof(Rgb));  // the film, then the image made from it
+}
 
 RenderOutput render(const Scene& scene, const RenderSettings& settings, ProgressSink* progress,
                     const std::atomic<bool>* cancel) {
   validate(scene, settings);
+  reserve_memory(render_memory_bytes(settings),
+                 "the " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " image's film");
   const auto start = std::chrono::steady_clock::now();
   const Camera camera(scene.camera, settings.width, settings.height);
   const Sampler sampler(settings.seed);
@@ -78,15 +97,17 @@ RenderOutput render(const Scene& scene, const RenderSettings& settings, Progress
   const uint64_t samples_total = uint64_t(settings.width) * settings.height * settings.spp;
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
+  const bool has_images = !scene.textures.images().empty();
+  auto texture_failed = [&] { return has_images && !texture_failure(scene).empty(); };
 
   int first_sample = 0;
   for (const int pass_spp : make_passes(settings.spp)) {
-    if (cancelled()) break;
+    if (cancelled() || texture_failed()) break;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       Worker& w = workers.local();
       if (!w.renderer) w.renderer = std::make_unique<WavefrontRenderer>(scene, camera, settings, sampler, vpl_ptr);
       for (size_t t = range.begin(); t != range.end(); ++t) {
-        if (cancelled()) return;
+        if (cancelled() || texture_failed()) return;
         const Tile& tile = tiles[t];
         w.requests.clear();
         for (int y = tile.y0; y < tile.y1; ++y)
@@ -103,6 +124,7 @@ RenderOutput render(const Scene& scene, const RenderSettings& settings, Progress
     first_sample += pass_spp;
   }
 
+  if (const std::string failure = texture_failure(scene); !failure.empty()) throw Error(failure);
   RenderOutput out;
   out.stats.extension_rays += vpls.light_rays;  // IGI's light paths
   for (const Worker& w : workers) {

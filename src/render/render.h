@@ -24,6 +24,10 @@ inline bool ends_after_first_scatter(IntegratorKind k) {
   return k == IntegratorKind::Direct || k == IntegratorKind::Igi;
 }
 
+// Bounds of what render() accepts: the pixel count (a 16384x16384 image) and the samples per pixel.
+constexpr uint64_t kMaxRenderPixels = uint64_t(1) << 28;
+constexpr int kMaxSpp = 1 << 24;
+
 struct RenderSettings {
   int width = 512, height = 512;
   int spp = 16;
@@ -69,8 +73,12 @@ struct RenderOutput {
   RenderStats stats;
 };
 
+// Bytes render() allocates for an image of these settings (film and result), checked against the memory budget.
+uint64_t render_memory_bytes(const RenderSettings& settings);
+
 // Renders the scene's camera view. `cancel` (may be null) stops the render between tiles; the image then holds
-// the samples done so far. Throws torte::Error for invalid settings or a scene without a camera.
+// the samples done so far. Throws torte::Error for invalid settings, a scene without a camera, a film over the
+// memory budget, or an image texture that fails to read while rendering (naming the file).
 RenderOutput render(const Scene& scene, const RenderSettings& settings, ProgressSink* progress = nullptr,
                     const std::atomic<bool>* cancel = nullptr);
 

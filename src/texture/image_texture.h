@@ -19,6 +19,9 @@ class ImageSource {
   virtual Rgb lookup(Vec2f st, float filter_width) const = 0;
   // For messages and tostring().
   virtual std::string description() const { return "image"; }
+  // Empty while every lookup succeeded; else why the first failed lookup failed, naming the file (a failed
+  // lookup returns black, so the renderer checks this and fails instead of writing a wrong image).
+  virtual std::string failure() const { return {}; }
 };
 
 struct ImageTextureOptions {

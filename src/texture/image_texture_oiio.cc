@@ -4,10 +4,15 @@
 #include <OpenImageIO/oiioversion.h>
 #include <OpenImageIO/texture.h>
 
+#include <atomic>
 #include <cmath>
-#include <filesystem>
+#include <mutex>
 
 #include "core/error.h"
+#include "core/file_read.h"
+#include "core/memory_budget.h"
+#include "core/quiet_stderr.h"
+#include "core/text.h"
 
 namespace torte {
 
@@ -41,6 +46,24 @@ OIIO::TextureSystem::Perthread* perthread() {
 inline float srgb_to_linear(float v) {
   if (v <= 0.04045f) return v * (1 / 12.92f);
   return std::pow((v + 0.055f) * (1 / 1.055f), 2.4f);
+}
+
+// The image cache's message for a file it cannot read, without its boilerplate lines ('Error reading from
+// "<file>" (subimg=0, ...)', 'PNG library error') when the reader said more, as one line.
+std::string cache_error(const std::string& text) {
+  std::string kept;
+  size_t pos = 0;
+  while (pos < text.size()) {
+    size_t eol = text.find('\n', pos);
+    if (eol == std::string::npos) eol = text.size();
+    const std::string_view line(text.data() + pos, eol - pos);
+    pos = eol + 1;
+    if (line.starts_with("Error reading from \"") || line.starts_with("Invalid image file \"") ||
+        line == "PNG library error")
+      continue;
+    kept.append(line).push_back('\n');
+  }
+  return one_line_message(kept.empty() ? text : kept, "");
 }
 
 class OiioImageSource final : public ImageSource {
@@ -80,7 +103,7 @@ class OiioImageSource final : public ImageSource {
     const float w = std::isfinite(filter_width) && filter_width > 0 ? filter_width : 0.0f;
     float rgb[3] = {0, 0, 0};
     if (!texture_system().texture(handle_, perthread(), opt, st.x, 1.0f - st.y, w, 0, 0, w, 3, rgb)) {
-      (void)texture_system().geterror();  // clear the message; the file was checked when opened
+      record_failure(texture_system().geterror());
       return Rgb(0);
     }
     if (decode_srgb_) return {srgb_to_linear(rgb[0]), srgb_to_linear(rgb[1]), srgb_to_linear(rgb[2])};
@@ -91,7 +114,23 @@ class OiioImageSource final : public ImageSource {
     return path_ + " (" + std::to_string(width_) + "x" + std::to_string(height_) + (decode_srgb_ ? ", sRGB)" : ", linear)");
   }
 
+  std::string failure() const override {
+    if (!failed_.load(std::memory_order_acquire)) return {};
+    std::lock_guard lock(failure_mutex_);
+    return failure_;
+  }
+
  private:
+  // OpenImageIO reports a tile it cannot read once and then serves it black, so the first message is kept.
+  void record_failure(const std::string& message) const {
+    std::lock_guard lock(failure_mutex_);
+    if (failed_.load(std::memory_order_relaxed)) return;
+    const std::string why = cache_error(message);
+    failure_ = "cannot read image texture '" + escape_text(path_) + "' while rendering: " +
+               (why.empty() ? "the pixel data is truncated or corrupt" : why);
+    failed_.store(true, std::memory_order_release);
+  }
+
   std::string path_;
   OIIO::TextureSystem::TextureHandle* handle_;
   OIIO::TextureOpt::Wrap wrap_ = OIIO::TextureOpt::WrapPeriodic;
@@ -99,24 +138,67 @@ class OiioImageSource final : public ImageSource {
   OIIO::TextureOpt::InterpMode interp_ = OIIO::TextureOpt::InterpBilinear;
   bool decode_srgb_;
   int width_, height_;
+  mutable std::mutex failure_mutex_;
+  mutable std::atomic<bool> failed_{false};
+  mutable std::string failure_;
 };
+
+// Checks a texture's header before its pixels are read: the image cache reads an untiled file (PNG, JPEG, PPM,
+// HDR, ...) as one tile holding the whole image, MIP levels add a third, and a failed allocation there leaves
+// other threads waiting for the tile forever. So the size is checked against the memory budget first.
+void check_texture_size(const std::string& path, const OIIO::ImageSpec& spec) {
+  const std::string what = "image texture '" + escape_text(path) + "' (" + std::to_string(spec.width) + "x" +
+                           std::to_string(spec.height) + ", " + std::to_string(spec.nchannels) + " channels)";
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    throw Error("cannot read " + what + ": the header declares no pixels");
+  if (spec.depth > 1) throw Error("cannot read " + what + ": volume images (depth " + std::to_string(spec.depth) +
+                                  ") are not supported");
+  const uint64_t texels = checked_bytes(uint64_t(spec.width), uint64_t(spec.height), what);
+  const uint64_t bytes = checked_bytes(texels, uint64_t(spec.nchannels) * spec.format.size(), what);
+  reserve_memory(bytes > UINT64_MAX / 2 ? UINT64_MAX : bytes + bytes / 3, what);
+}
+
+// Reads the finest level's texel at the image centre now, on the calling thread: for an untiled file that reads
+// the whole image, so a truncated or corrupt file fails here with its name rather than rendering black (the cache
+// reports a bad tile to the first lookup only). libpng's own stderr lines are kept out of the one-line error.
+void preload(OIIO::TextureSystem& ts, OIIO::TextureSystem::TextureHandle* handle, const std::string& path) {
+  OIIO::TextureOpt opt;
+  opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
+  opt.interpmode = OIIO::TextureOpt::InterpClosest;
+  float rgb[3];
+  bool ok;
+  {
+    QuietStderr quiet;
+    ok = ts.texture(handle, perthread(), opt, 0.5f, 0.5f, 0, 0, 0, 0, 3, rgb);
+  }
+  if (ok) return;
+  const std::string why = cache_error(ts.geterror());
+  ts.invalidate(OIIO::ustring(path), true);  // so a later attempt reads the file again rather than a black tile
+  throw Error("cannot read image texture '" + escape_text(path) + "': the pixel data is truncated or corrupt" +
+              (why.empty() ? std::string() : " (" + why + ")"));
+}
 
 }  // namespace
 
 std::shared_ptr<const ImageSource> open_image_texture(const std::string& path, const ImageTextureOptions& options) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw Error("cannot open image texture '" + path + "': no such file");
+  const std::string problem = regular_file_problem(path);
+  if (!problem.empty()) throw Error("cannot open image texture '" + escape_text(path) + "': " + problem);
   OIIO::TextureSystem& ts = texture_system();
-  OIIO::TextureSystem::TextureHandle* handle = ts.get_texture_handle(OIIO::ustring(path), perthread());
   OIIO::ImageSpec spec;
-  if (!handle || !ts.good(handle) || !ts.get_imagespec(handle, perthread(), 0, spec)) {
-    std::string why = ts.geterror();
-    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
-    for (char& c : why)
-      if (c == '\n') c = ' ';
-    throw Error("cannot read image texture '" + path + "'" + (why.empty() ? std::string() : ": " + why));
+  OIIO::TextureSystem::TextureHandle* handle = nullptr;
+  bool ok;
+  {
+    QuietStderr quiet;
+    handle = ts.get_texture_handle(OIIO::ustring(path), perthread());
+    ok = handle && ts.good(handle) && ts.get_imagespec(handle, perthread(), 0, spec);
   }
+  if (!ok) {
+    const std::string why = cache_error(ts.geterror());
+    ts.invalidate(OIIO::ustring(path), true);
+    throw Error("cannot read image texture '" + escape_text(path) + "'" + (why.empty() ? std::string() : ": " + why));
+  }
+  check_texture_size(path, spec);
+  preload(ts, handle, path);
   bool srgb = false;
   switch (options.color_space) {
     case ImageTextureOptions::ColorSpace::Srgb: srgb = true; break;

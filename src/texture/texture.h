@@ -150,6 +150,8 @@ class TextureTable {
   size_t size() const { return nodes_.size(); }
   const TextureNode& node(size_t i) const { return nodes_[i]; }
   bool empty() const { return nodes_.empty(); }
+  // The image sources the nodes look up (the renderer checks their failure()).
+  const std::vector<std::shared_ptr<const ImageSource>>& images() const { return images_; }
 
  private:
   friend class TextureTableBuilder;

@@ -5,16 +5,30 @@
 #include <climits>
 #include <cstring>
 #include <fstream>
+#include <string>
 
 #include "core/error.h"
+#include "core/file_read.h"
+#include "core/memory_budget.h"
 
 namespace torte {
 
 uint64_t VoxelGrid::key(int cx, int cy, int cz) {
   constexpr int kLimit = 1 << 20;
   if (cx < -kLimit || cx >= kLimit || cy < -kLimit || cy >= kLimit || cz < -kLimit || cz >= kLimit)
-    throw Error("voxel grid: chunk coordinates out of range (|chunk| must stay below 2^20)");
+    throw Error("voxel grid: chunk (" + std::to_string(cx) + ", " + std::to_string(cy) + ", " + std::to_string(cz) +
+                ") is out of range (chunk coordinates lie in [-2^20, 2^20), voxel coordinates in [-2^24, 2^24))");
   return uint64_t(cx + kLimit) | uint64_t(cy + kLimit) << 21 | uint64_t(cz + kLimit) << 42;
+}
+
+std::unique_ptr<VoxelChunk> VoxelGrid::new_chunk() const {
+  // Chunks come one at a time (8 KB each): every kBudgetChunks of them the next batch is checked against the
+  // memory budget, so a script filling chunks in a loop fails with a clear error before the machine runs out.
+  constexpr size_t kBudgetChunks = 2048;
+  if ((chunks_.size() + 1) % kBudgetChunks == 0)
+    reserve_memory(kBudgetChunks * (sizeof(VoxelChunk) + 64),
+                   "voxel grid: " + std::to_string(chunks_.size() + 1) + " chunks and more");
+  return std::make_unique<VoxelChunk>();
 }
 
 void VoxelGrid::set(int x, int y, int z, int16_t id) {
@@ -23,7 +37,7 @@ void VoxelGrid::set(int x, int y, int z, int16_t id) {
   auto it = chunks_.find(k);
   if (it == chunks_.end()) {
     if (id == 0) return;
-    it = chunks_.emplace(k, std::make_unique<VoxelChunk>()).first;
+    it = chunks_.emplace(k, new_chunk()).first;
   }
   it->second->ids[size_t(i)] = id;
   ++revision_;
@@ -44,9 +58,9 @@ void VoxelGrid::set_chunk(int cx, int cy, int cz, const int16_t* ids) {
     chunks_.erase(k);
     return;
   }
-  auto& slot = chunks_[k];
-  if (!slot) slot = std::make_unique<VoxelChunk>();
-  std::memcpy(slot->ids.data(), ids, sizeof(int16_t) * kVoxelChunkVoxels);
+  auto it = chunks_.find(k);
+  if (it == chunks_.end()) it = chunks_.emplace(k, new_chunk()).first;  // made first: the budget check may throw
+  std::memcpy(it->second->ids.data(), ids, sizeof(int16_t) * kVoxelChunkVoxels);
 }
 
 const VoxelChunk* VoxelGrid::chunk(int cx, int cy, int cz) const {
@@ -93,6 +107,7 @@ void VoxelGrid::save(const std::string& path) const {
 }
 
 VoxelGrid VoxelGrid::load(const std::string& path) {
+  check_regular_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("cannot read " + path);
   char magic[6];

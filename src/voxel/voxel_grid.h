@@ -27,7 +27,8 @@ struct VoxelChunk {
 
 class VoxelGrid {
  public:
-  // Chunk coordinates (voxel >> 4) must lie in [-2^20, 2^20).
+  // Chunk coordinates (voxel >> 4) must lie in [-2^20, 2^20). New chunks are checked against the memory budget
+  // (core/memory_budget.h) in batches; both limits throw torte::Error.
   void set(int x, int y, int z, int16_t id);
   int16_t get(int x, int y, int z) const;
   // Replaces chunk (cx, cy, cz) by 4096 ids in chunk order (see above). An all-zero chunk removes the chunk.
@@ -54,6 +55,7 @@ class VoxelGrid {
 
  private:
   static uint64_t key(int cx, int cy, int cz);
+  std::unique_ptr<VoxelChunk> new_chunk() const;  // checks the memory budget every few thousand chunks
   static int key_x(uint64_t k) { return int(k & 0x1fffff) - (1 << 20); }
   static int key_y(uint64_t k) { return int((k >> 21) & 0x1fffff) - (1 << 20); }
   static int key_z(uint64_t k) { return int((k >> 42) & 0x1fffff) - (1 << 20); }

@@ -7,6 +7,7 @@
 #include <climits>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 
 namespace torte {
 
@@ -216,6 +217,8 @@ VoxelTree VoxelTree::build(const VoxelGrid& grid, bool parallel) {
   if (total > (size_t(1) << 26))
     throw Error("voxel grid: the chunks span more than 2^26 chunk cells (" + std::to_string(total) +
                 "); split the world into several grids");
+  reserve_memory(total * (sizeof(const VoxelChunk*) + sizeof(int32_t)),
+                 "voxel grid: the box of " + std::to_string(total) + " chunk cells");
   b.chunks.assign(total, nullptr);
   b.uniform.assign(total, 0);
   grid.for_each_chunk([&](int cx, int cy, int cz, const VoxelChunk& c) {
