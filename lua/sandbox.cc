@@ -61,7 +61,8 @@ fs::path resolve_path(const fs::path& path) {
         const fs::path target = fs::read_symlink(next, ec);
         if (!ec) {
           if (target.is_absolute()) out = target.root_path();
-          std::vector<fs::path> parts(target.relative_path().begin(), target.relative_path().end());
+          const fs::path relative = target.relative_path();
+          std::vector<fs::path> parts(relative.begin(), relative.end());
           for (auto it = parts.rbegin(); it != parts.rend(); ++it) todo.push_back(*it);
           continue;
         }
