@@ -73,7 +73,7 @@ int debug_getlocal(lua_State* L) {
   if (lua_isfunction(L, arg)) return call_original(L);  // parameter names of a function: no values
   lua_Debug ar = lua_frame(L, co, arg, "getlocal");
   const int n = int(luaL_checkinteger(L, arg + 1));
-  luaL_checkstack(co, 1, "no stack for getlocal");
+  if (co != L && !lua_checkstack(co, 1)) luaL_error(L, "stack overflow");  // an error of co would not be ours
   const char* name = lua_getlocal(co, &ar, n);
   if (!name) {
     lua_pushnil(L);
@@ -95,7 +95,7 @@ int debug_setlocal(lua_State* L) {
   const int n = int(luaL_checkinteger(L, arg + 1));
   luaL_checkany(L, arg + 2);
   lua_settop(L, arg + 2);
-  luaL_checkstack(co, 1, "no stack for setlocal");
+  if (co != L && !lua_checkstack(co, 1)) luaL_error(L, "stack overflow");
   if (const char* peek = lua_getlocal(co, &ar, n)) {
     const bool temporary = peek[0] == '(';
     lua_pop(co, 1);
