@@ -38,6 +38,7 @@
 
 #include "core/file_read.h"
 #include "core/memory_budget.h"
+#include "file_access.h"
 #include "types.h"
 
 namespace torte::lua {
@@ -52,6 +53,7 @@ constexpr const char* kLongsName = "torte.data.longs";
 int l_list_dir(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) throw Error("torte.data.list_dir expects a directory name, got " + type_name(L, 1));
   const std::string path = lua_tostring(L, 1);
+  check_read(L, path, "torte.data.list_dir");
   std::vector<std::string> names;
   std::error_code ec;
   for (std::filesystem::directory_iterator it(path, ec), end; !ec && it != end; it.increment(ec))
@@ -74,6 +76,7 @@ int l_list_dir(lua_State* L) {
 int l_read_file(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) throw Error("torte.data.read_file expects a file name, got " + type_name(L, 1));
   const std::string path = lua_tostring(L, 1);
+  check_read(L, path, "torte.data.read_file");
   std::string data;
   try {
     data = read_file_bytes(path);
@@ -158,19 +161,21 @@ int l_decompress(lua_State* L) {
 // ---- long arrays ---------------------------------------------------------------------------------------------
 
 struct Longs {
+  UserdataHeader header;  // its type is in its bytes, so debug.setmetatable cannot pass another userdata off as one
   lua_Integer n;
   int64_t v[1];  // n entries follow
 };
 
 Longs* new_longs(lua_State* L, size_t n) {
   auto* a = static_cast<Longs*>(lua_newuserdatauv(L, offsetof(Longs, v) + sizeof(int64_t) * (n ? n : 1), 0));
+  a->header = {UserdataHeader::kMagic, &TypeTag<Longs>::id, kLongsName, nullptr};
   a->n = lua_Integer(n);
   luaL_setmetatable(L, kLongsName);
   return a;
 }
 
 Longs* check_longs(lua_State* L, int idx, const char* fn) {
-  auto* a = static_cast<Longs*>(luaL_testudata(L, idx, kLongsName));
+  auto* a = reinterpret_cast<Longs*>(tagged_userdata(L, idx, &TypeTag<Longs>::id));
   if (!a) throw Error(std::string(fn) + " expects a " + kLongsName + ", got " + type_name(L, idx));
   return a;
 }
@@ -440,7 +445,7 @@ int l_unpack_bits(lua_State* L) {
   if (lua_type(L, 1) == LUA_TSTRING) {
     bytes = reinterpret_cast<const unsigned char*>(lua_tolstring(L, 1, &units));
     unit_bits = 8;
-  } else if (auto* a = static_cast<Longs*>(luaL_testudata(L, 1, kLongsName))) {
+  } else if (auto* a = reinterpret_cast<Longs*>(tagged_userdata(L, 1, &TypeTag<Longs>::id))) {
     longs = a->v;
     units = size_t(a->n);
     unit_bits = 64;

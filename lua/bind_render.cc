@@ -9,8 +9,10 @@
 
 #include "core/interrupt.h"
 #include "core/memory_budget.h"
+#include "file_access.h"
 #include "film/image_io.h"
 #include "progress.h"
+#include "script_limits.h"
 #include "types.h"
 
 namespace torte::lua {
@@ -262,7 +264,7 @@ int l_render(lua_State* L) {
   if (!(s.vpl_roulette >= 0 && s.vpl_roulette <= 1)) kw.fail("vpl_roulette", "must be in [0, 1]");
   if (ctx.spp_override > 0) s.spp = ctx.spp_override;
   if (ctx.seed_override >= 0) s.seed = uint64_t(ctx.seed_override);
-  if (ctx.interrupted) throw Error("torte.render: not started, the run was interrupted");
+  if (ctx.interrupted || interrupt_requested()) throw Interrupted("interrupted: torte.render was not started");
   // The film is checked before the scene is built, so an over-large image fails at once.
   reserve_memory(render_memory_bytes(s), "torte.render: the " + std::to_string(s.width) + "x" +
                                              std::to_string(s.height) + " image's film");
@@ -297,7 +299,10 @@ int l_render(lua_State* L) {
   progress.finish();
   img->image = std::move(out.image);
   img->stats = out.stats;
-  if (out.stats.interrupted) ctx.interrupted = true;
+  if (out.stats.interrupted || interrupt_requested()) {  // Ctrl-C: the script may still save this image
+    ctx.interrupted = true;
+    note_render_interrupted(L);
+  }
   ctx.build_seconds += build_seconds;
   ctx.render_seconds += out.stats.render_seconds;
   ctx.rays += out.stats.rays();
@@ -323,6 +328,7 @@ int image_write(lua_State* L) {
   auto img = self_image(L, "write");
   if (lua_type(L, 2) != LUA_TSTRING) throw Error("image:write expects a file name");
   const std::string path = lua_tostring(L, 2);
+  check_write(L, path, "image:write");
   WriteOptions options;
   if (!lua_isnoneornil(L, 3)) {
     KwArgs kw(L, 3, "image:write");

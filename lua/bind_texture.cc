@@ -14,6 +14,7 @@
 // texture used as a colour, fails with the function and key at the script's line.
 #include <cmath>
 
+#include "file_access.h"
 #include "texture/image_texture_oiio.h"
 #include "texture_param.h"
 #include "types.h"
@@ -204,6 +205,7 @@ int l_turbulence(lua_State* L) {
 int l_image(lua_State* L) {
   KwArgs kw = kwargs(L, "torte.texture.image");
   const std::string file = kw.string("file");
+  check_read(L, file, "torte.texture.image");
   ImageTextureOptions o;
   const std::string wrap = kw.string("wrap", "periodic");
   if (wrap == "periodic" || wrap == "repeat") o.wrap = ImageTextureOptions::Wrap::Periodic;

@@ -19,6 +19,7 @@
 #include <cstring>
 #include <map>
 
+#include "file_access.h"
 #include "types.h"
 #include "voxel/voxel_shape.h"
 
@@ -103,6 +104,7 @@ int grid_set_chunk(lua_State* L) {
 
 int grid_save(lua_State* L) {  // g:save(path): raw chunk dump (bench/bench_voxel.cc reads it)
   VoxelGridObject& g = self(L, "save");
+  check_write(L, luaL_checkstring(L, 2), "grid:save");
   g.grid.save(luaL_checkstring(L, 2));
   return 0;
 }

@@ -1,10 +1,73 @@
 #include "binding.h"
 
 #include <cmath>
+#include <cstdlib>
+
+#include "core/memory_budget.h"
+#include "script_limits.h"
 
 namespace torte::lua {
 
+UserdataHeader* tagged_userdata(lua_State* L, int idx, const void* tag) {
+  if (lua_type(L, idx) != LUA_TUSERDATA || lua_rawlen(L, idx) < sizeof(UserdataHeader)) return nullptr;
+  auto* h = static_cast<UserdataHeader*>(lua_touserdata(L, idx));
+  if (h->magic != UserdataHeader::kMagic || (tag && h->tag != tag)) return nullptr;
+  return h;
+}
+
+namespace {
+
+// One collector for every torte type: it releases what the userdata's own header says it holds, so a userdata
+// that was given another type's metatable is still released as what it is.
+int collect_tagged(lua_State* L) {
+  if (UserdataHeader* h = tagged_userdata(L, 1, nullptr)) {
+    if (auto release = h->release) {
+      h->release = nullptr;  // a finalizer can run again on a resurrected object
+      release(h);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+void set_tagged_metatable(lua_State* L, const UserdataHeader& header) {
+  if (luaL_newmetatable(L, header.name)) {
+    lua_pushcfunction(L, collect_tagged);
+    lua_setfield(L, -2, "__gc");
+    lua_pushstring(L, header.name);
+    lua_setfield(L, -2, "__name");
+    // getmetatable() returns this string instead of the table, so scripts cannot call __gc or __index directly.
+    lua_pushstring(L, header.name);
+    lua_setfield(L, -2, "__metatable");
+  }
+  lua_setmetatable(L, -2);
+}
+
+void raise_binding_failure(lua_State* L, const BindingFailure& failure) {
+  switch (failure.kind) {
+    case BindingFailure::kInterrupted:
+      raise_interrupted(L, failure.message);
+    case BindingFailure::kOutOfMemory: {
+      // Name the binding as the script called it (torte.mesh.load is called as 'load').
+      lua_Debug ar;
+      std::string name = "a torte function";
+      if (lua_getstack(L, 0, &ar) && lua_getinfo(L, "n", &ar) && ar.name)
+        name = std::string("'") + ar.name + "'";
+      std::string detail = failure.message.empty() ? "" : " (" + failure.message + ")";
+      luaL_error(L, "out of memory while running %s%s; the process may use up to %s (--max-memory)", name.c_str(),
+                 detail.c_str(), format_bytes(memory_limit()).c_str());
+    }
+    case BindingFailure::kError:
+      break;
+  }
+  luaL_error(L, "%s", failure.message.c_str());
+  std::abort();  // luaL_error does not return
+}
+
 std::string type_name(lua_State* L, int idx) {
+  // A torte userdata is named by its own tag: its metatable may have been swapped.
+  if (const UserdataHeader* h = tagged_userdata(L, idx, nullptr)) return h->name;
   if (lua_getmetatable(L, idx)) {
     lua_getfield(L, -1, "__name");
     std::string name = lua_isstring(L, -1) ? lua_tostring(L, -1) : "";

@@ -8,30 +8,53 @@
 #include <lua.h>
 #include <lualib.h>
 
+#include <cstdint>
 #include <memory>
+#include <new>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/rgb.h"
 #include "core/transform.h"
 
 namespace torte::lua {
 
-// Runs a binding body; torte::Error and std::exception become a Lua error at the caller's location.
+// How a binding body failed, for raise_binding_failure.
+struct BindingFailure {
+  enum Kind { kError, kOutOfMemory, kInterrupted } kind = kError;
+  std::string message;
+};
+/// Raises the Lua error for `failure` at the caller's location: the message of a torte::Error, "out of memory
+/// while running '<function>'" for std::bad_alloc, and for torte::Interrupted a message the runtime recognises
+/// as the end of the run by Ctrl-C (exit code 130, no error line).
+[[noreturn]] void raise_binding_failure(lua_State* L, const BindingFailure& failure);
+
+// Runs a binding body; torte::Error and std::exception become a Lua error at the caller's location. Lua's own
+// errors (a C++ exception of another type in lua5.4-c++) pass through untouched.
 template <int (*Body)(lua_State*)>
 int guarded(lua_State* L) {
-  std::string message;
+  BindingFailure failure;
   try {
     return Body(L);
+  } catch (const Interrupted& e) {
+    failure = {BindingFailure::kInterrupted, e.what()};
+  } catch (const std::bad_alloc&) {
+    failure = {BindingFailure::kOutOfMemory, {}};
+  } catch (const std::length_error& e) {  // a container asked for more than it can ever hold
+    failure = {BindingFailure::kOutOfMemory, e.what()};
   } catch (const std::exception& e) {
-    message = e.what();
+    failure = {BindingFailure::kError, e.what()};
   }
-  return luaL_error(L, "%s", message.c_str());
+  raise_binding_failure(L, failure);  // outside the handler: the C++ exception is gone before Lua's is thrown
 }
 
 // ---- userdata owning a std::shared_ptr<T>; T's metatable is named by LuaName<T>::value -----------------
+// The type of a torte userdata is a tag inside its own bytes, not its metatable: debug.setmetatable (or a
+// registry edit) can give a userdata any metatable, and a binding must never read one type's bytes as another's.
 template <class T>
 struct LuaName;
 template <>
@@ -39,31 +62,47 @@ struct LuaName<Transform> {
   static constexpr const char* value = "torte.transform";
 };
 
+/// The first bytes of every full userdata torte creates. `magic` tells torte's userdata from the io library's
+/// (or any other), `tag` is the address of TypeTag<T>::id, `release` destroys what it owns (may be null).
+struct UserdataHeader {
+  static constexpr uint64_t kMagic = 0x746f7274652e7564;  // "torte.ud"
+  uint64_t magic;
+  const void* tag;
+  const char* name;  // for error messages, e.g. "torte.mesh"
+  void (*release)(UserdataHeader*);
+};
+template <class T>
+struct TypeTag {
+  static constexpr char id = 0;  // only its address matters: one per type
+};
+
+/// The header of the userdata at idx if it is one of torte's and carries `tag` (any torte type when `tag` is
+/// null), else nullptr. Checks the value's type and size before reading a byte of it.
+UserdataHeader* tagged_userdata(lua_State* L, int idx, const void* tag);
+/// Gives the userdata on the top of the stack the metatable named `header.name`, creating it (a __gc that calls
+/// the header's release, __name, and a __metatable that hides it from getmetatable) on first use.
+void set_tagged_metatable(lua_State* L, const UserdataHeader& header);
+
+template <class T>
+struct Boxed {
+  UserdataHeader header;
+  std::shared_ptr<T> object;
+};
+
 template <class T>
 void push_object(lua_State* L, std::shared_ptr<T> object) {
-  void* mem = lua_newuserdatauv(L, sizeof(std::shared_ptr<T>), 0);
-  new (mem) std::shared_ptr<T>(std::move(object));
-  if (luaL_newmetatable(L, LuaName<T>::value)) {
-    lua_pushcfunction(L, [](lua_State* L2) -> int {
-      // Only ever called by the collector on a live T, but check anyway: a script must not be able to crash us.
-      if (auto* p = static_cast<std::shared_ptr<T>*>(luaL_testudata(L2, 1, LuaName<T>::value))) p->reset();
-      return 0;
-    });
-    lua_setfield(L, -2, "__gc");
-    lua_pushstring(L, LuaName<T>::value);
-    lua_setfield(L, -2, "__name");
-    // getmetatable() returns this string instead of the table, so scripts cannot call __gc or __index directly.
-    lua_pushstring(L, LuaName<T>::value);
-    lua_setfield(L, -2, "__metatable");
-  }
-  lua_setmetatable(L, -2);
+  const UserdataHeader header{UserdataHeader::kMagic, &TypeTag<T>::id, LuaName<T>::value,
+                              [](UserdataHeader* h) { reinterpret_cast<Boxed<T>*>(h)->object.reset(); }};
+  // Header and object are complete before anything else can fail, so a __gc never sees half an object.
+  new (lua_newuserdatauv(L, sizeof(Boxed<T>), 0)) Boxed<T>{header, std::move(object)};
+  set_tagged_metatable(L, header);
 }
 
 // The object at idx if it is a T, else nullptr.
 template <class T>
 std::shared_ptr<T> to_object(lua_State* L, int idx) {
-  auto* p = static_cast<std::shared_ptr<T>*>(luaL_testudata(L, idx, LuaName<T>::value));
-  return p ? *p : nullptr;  // a collected (reset) object also comes back as nullptr
+  auto* b = reinterpret_cast<Boxed<T>*>(tagged_userdata(L, idx, &TypeTag<T>::id));
+  return b ? b->object : nullptr;  // a collected (reset) object also comes back as nullptr
 }
 
 // Name of a Lua value's type for error messages (torte types by their own names).

@@ -5,8 +5,16 @@
 #include <cstdlib>
 #include <algorithm>
 #include <cstring>
+#include <optional>
+#include <string_view>
 
+#include "core/interrupt.h"
+#include "core/memory_budget.h"
 #include "progress.h"
+#include "sandbox.h"
+#include "script_libs.h"
+#include "script_limits.h"
+#include "text_chunks.h"
 #include "types.h"
 
 namespace torte {
@@ -33,22 +41,128 @@ void push_arg_value(lua_State* L, const std::string& v) {
   lua_pushstring(L, v.c_str());
 }
 
+// The values of output=FILE arguments: the sandbox lets the script write in their directories.
+std::vector<std::string> output_arguments(const RunOptions& options) {
+  std::vector<std::string> out;
+  for (const auto& [key, value] : options.args)
+    if (key == "output" && !value.empty()) out.push_back(value);
+  return out;
+}
+
 int load_embedded(lua_State* L) {
   const char* name = lua_tostring(L, 1);
   for (const EmbeddedLua* e = kEmbeddedLua; e->name; ++e)
     if (std::strcmp(e->name, name) == 0) {
       const std::string chunk = std::string("=[torte] ") + e->name;
-      if (luaL_loadbuffer(L, e->source, std::strlen(e->source), chunk.c_str()) != LUA_OK) return lua_error(L);
+      if (luaL_loadbufferx(L, e->source, std::strlen(e->source), chunk.c_str(), "t") != LUA_OK) return lua_error(L);
       lua_call(L, 0, 1);
       return 1;
     }
   return luaL_error(L, "module '%s' is not embedded", name);
 }
 
-// Message handler: keep the error one line (no traceback), and make non-string errors printable.
+// Whether msg starts with the location of a script file ("scene.lua:12: ..."), not of the embedded library
+// ("[torte] minecraft.world:170: ..."), a string chunk ("[string \"...\"]:1: ...") or nothing.
+bool located_in_file(const std::string& msg) {
+  const size_t colon = msg.find(':');
+  if (colon == std::string::npos || colon == 0 || msg[0] == '[') return false;
+  size_t i = colon + 1;
+  while (i < msg.size() && msg[i] >= '0' && msg[i] <= '9') ++i;
+  return i > colon + 1 && i < msg.size() && msg[i] == ':';
+}
+
+// Message handler: the error as one line that names the script's file and line. Errors without a location
+// (C stack overflow, errors from inside Lua's libraries or torte's embedded Lua, error values that are not
+// strings) get the innermost frame of a script file in front.
 int message_handler(lua_State* L) {
-  luaL_tolstring(L, 1, nullptr);
+  ScriptLimits* limits = script_limits(L);
+  std::string msg;
+  try {
+    if (lua_type(L, 1) == LUA_TSTRING || lua_type(L, 1) == LUA_TNUMBER) {
+      msg = lua_tostring(L, 1);
+    } else if (luaL_getmetafield(L, 1, "__tostring") != LUA_TNIL) {
+      // Protected: a failing __tostring (or the hooks stopping it) must not turn this error into another one.
+      lua_pushvalue(L, 1);
+      if (lua_pcall(L, 1, 1, 0) == LUA_OK && lua_type(L, -1) == LUA_TSTRING)
+        msg = lua_tostring(L, -1);
+      else
+        msg = "(error object is a " + type_name(L, 1) + " value whose __tostring failed)";
+    } else {
+      msg = "(error object is a " + type_name(L, 1) + " value)";
+    }
+    // A refusal by the Lua memory cap that a script caught and raised again says which limit it was.
+    constexpr std::string_view kNoMemory = "not enough memory";
+    if (limits && std::string_view(msg).ends_with(kNoMemory)) {
+      const std::string what = limits->memory_error(false);
+      if (!what.empty()) msg = msg.substr(0, msg.size() - kNoMemory.size()) + what;
+    }
+    if (!located_in_file(msg)) {
+      const std::string where = script_location(L);
+      if (!where.empty()) msg = where + " " + msg;
+    }
+  } catch (const std::exception&) {  // the C++ heap is exhausted too
+    msg = "out of memory while reporting an error";
+  }
+  lua_pushstring(L, msg.c_str());
   return 1;
+}
+
+// One line: runs of line breaks, tabs and other control bytes (from multi-line Lua messages such as require's
+// list of files tried, or from data files quoted in messages) become one space.
+std::string one_line(const std::string& msg) {
+  std::string out;
+  bool in_control = false;
+  for (const char c : msg) {
+    const bool control = static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    if (control) {
+      if (!in_control && !out.empty()) out += ' ';
+    } else {
+      out += c;
+    }
+    in_control = control;
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+int lua_panic(lua_State* L) {
+  const char* msg = lua_tostring(L, -1);
+  std::fprintf(stderr, "torte: error: unprotected Lua error: %s\n", msg ? one_line(msg).c_str() : "?");
+  std::fflush(stderr);
+  std::_Exit(kExitError);
+}
+
+int l_sandboxed(lua_State* L) {
+  lua_pushvalue(L, lua_upvalueindex(1));
+  return 1;
+}
+
+// Everything the protected part of run_script needs.
+struct Run {
+  const RunOptions* options;
+  RunContext* ctx;
+  ScriptLimits* limits;
+  const FilePolicy* policy;
+};
+
+// The protected part of run_script: the libraries, the torte module, the prelude and the script itself.
+int run_protected(lua_State* L) {
+  const Run& run = *static_cast<const Run*>(lua_touserdata(L, 1));
+  lua_settop(L, 0);
+  set_run_context(L, run.ctx);
+  set_file_policy(L, run.policy);
+  run.limits->start(L);
+  open_script_libraries(L, run.options->sandbox);
+  open_torte_module(L, *run.options);
+  lua_getglobal(L, "require");
+  lua_pushstring(L, "torte.prelude");
+  lua_call(L, 1, 0);
+  if (load_text_file(L, run.options->script.c_str()) != LUA_OK) return lua_error(L);
+  lua_getglobal(L, "torte");
+  lua_getfield(L, -1, "args");
+  lua_remove(L, -2);
+  lua_call(L, 1, 0);  // the script gets its arguments as `...` too
+  return 0;
 }
 
 }  // namespace
@@ -60,6 +174,9 @@ void open_torte_module(lua_State* L, const RunOptions& options) {
   lua_setfield(L, torte_index, "version");
   lua_pushboolean(L, options.quiet);  // --quiet: Lua libraries print no progress either (lua/minecraft)
   lua_setfield(L, torte_index, "quiet");
+  lua_pushboolean(L, options.sandbox);  // torte.sandboxed(): whether --sandbox restricts this run
+  lua_pushcclosure(L, l_sandboxed, 1);
+  lua_setfield(L, torte_index, "sandboxed");
   lua_newtable(L);
   for (const auto& [key, value] : options.args) {
     push_arg_value(L, value);
@@ -99,54 +216,89 @@ void set_run_context(lua_State* L, RunContext* ctx) {
 
 RunContext& run_context(lua_State* L) {
   lua_rawgetp(L, LUA_REGISTRYINDEX, &kContextKey);
-  auto* ctx = static_cast<RunContext*>(lua_touserdata(L, -1));
+  auto* ctx = lua_islightuserdata(L, -1) ? static_cast<RunContext*>(lua_touserdata(L, -1)) : nullptr;
   lua_pop(L, 1);
+  if (!ctx) luaL_error(L, "internal: this Lua state has no torte run context (set_run_context)");
   return *ctx;
 }
 
+void interrupt_running_script() noexcept { interrupt_scripts(); }
+
+// Prints the one line for a failed lua_pcall of the script and returns the exit code: 130 for a run ended by
+// Ctrl-C ("torte: interrupted ..."), else 1 ("torte: error: ...").
+int report_failure(lua_State* L, int status, const RunOptions& options, const ScriptLimits& limits) noexcept {
+  try {
+    std::string msg = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "unknown error";
+    if (status == LUA_ERRMEM) {  // Lua calls no message handler for these
+      const std::string what = limits.memory_error(true);
+      msg = what.empty() ? options.script + ": " + msg : what;
+    } else if (status == LUA_ERRERR) {
+      msg = options.script + ": an error occurred while reporting an error (" + msg + ")";
+    }
+    if (!limits.interrupt_message().empty() && msg.find(limits.interrupt_message()) != std::string::npos) {
+      std::string where = limits.interrupt_location();
+      if (!where.empty() && where.back() == ':') where.pop_back();
+      std::fprintf(stderr, "torte: %s%s\n", limits.interrupt_message().c_str(),
+                   where.empty() ? "" : (" (" + where + ")").c_str());
+      return kExitInterrupted;
+    }
+    std::fprintf(stderr, "torte: error: %s\n", one_line(msg).c_str());
+  } catch (const std::exception&) {  // no memory even for the message
+    std::fputs("torte: error: out of memory while reporting an error\n", stderr);
+  }
+  return kExitError;
+}
+
 int run_script(const RunOptions& options) {
-  lua_State* L = luaL_newstate();
+  ScriptLimitSettings settings;
+  if (options.lua_instructions >= 0)
+    settings.instructions = uint64_t(options.lua_instructions);
+  else if (options.sandbox)
+    settings.instructions = uint64_t(kSandboxInstructions);
+  settings.memory = options.lua_memory > 0 ? options.lua_memory : memory_limit() / 2;
+  ScriptLimits limits(settings);
+  lua_State* L = limits.new_state();
   if (!L) {
     std::fprintf(stderr, "torte: error: cannot create a Lua state (out of memory)\n");
     return kExitError;
   }
+  lua_atpanic(L, lua_panic);
   RunContext ctx;
   ctx.spp_override = options.spp_override;
   ctx.seed_override = options.seed_override;
   ctx.quiet = options.quiet;
   ctx.cancel = options.cancel;
-  set_run_context(L, &ctx);
+  std::optional<FilePolicy> policy;
+  if (options.sandbox) {
+    try {
+      policy.emplace(
+          FilePolicySettings{options.script, options.allow_read, options.allow_write, output_arguments(options)});
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "torte: error: --sandbox: %s\n", one_line(e.what()).c_str());
+      lua_close(L);
+      return kExitError;
+    }
+  }
+  Run run{&options, &ctx, &limits, policy ? &*policy : nullptr};
+  guard_nested_reads(run.policy);
 
   int code = kExitOk;
   const auto start = std::chrono::steady_clock::now();
   lua_pushcfunction(L, message_handler);
   const int handler = lua_gettop(L);
   // Everything, including opening the libraries, runs protected so no Lua error escapes as a crash.
-  lua_pushcfunction(L, [](lua_State* L2) -> int {
-    const auto* opts = static_cast<const RunOptions*>(lua_touserdata(L2, 1));
-    luaL_openlibs(L2);
-    open_torte_module(L2, *opts);
-    lua_getglobal(L2, "require");
-    lua_pushstring(L2, "torte.prelude");
-    lua_call(L2, 1, 0);
-    if (luaL_loadfile(L2, opts->script.c_str()) != LUA_OK) return lua_error(L2);
-    lua_getglobal(L2, "torte");
-    lua_getfield(L2, -1, "args");
-    lua_remove(L2, -2);
-    lua_call(L2, 1, 0);  // the script gets its arguments as `...` too
-    return 0;
-  });
-  lua_pushlightuserdata(L, const_cast<RunOptions*>(&options));
-  if (lua_pcall(L, 1, 0, handler) != LUA_OK) {
-    std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "unknown error";
-    // One line: Lua syntax errors may quote a line break.
-    for (char& c : msg)
-      if (c == '\n') c = ' ';
-    std::fprintf(stderr, "torte: error: %s\n", msg.c_str());
-    code = kExitError;
+  lua_pushcfunction(L, run_protected);
+  lua_pushlightuserdata(L, &run);
+  const int status = lua_pcall(L, 1, 0, handler);
+  if (status != LUA_OK) {
+    // What the failed script held is garbage now; after a refusal of memory the report needs some.
+    lua_gc(L, LUA_GCCOLLECT);
+    code = report_failure(L, status, options, limits);
   }
-  if (ctx.interrupted && code == kExitOk) code = kExitInterrupted;
-  lua_close(L);
+  if ((ctx.interrupted || interrupt_requested()) && code == kExitOk) code = kExitInterrupted;
+  lua_close(L);  // finalizers may run Lua code: the limits still apply
+  limits.stop();
+  guard_nested_reads(nullptr);
   // After an error, the error line is the last word: no summary.
   if (!options.quiet && ctx.renders > 0 && code != kExitError) {
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

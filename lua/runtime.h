@@ -16,8 +16,20 @@ struct RunOptions {
   int spp_override = -1;
   int64_t seed_override = -1;
   bool quiet = false;
-  const std::atomic<bool>* cancel = nullptr;
+  const std::atomic<bool>* cancel = nullptr;  // renders stop when it becomes true (main: torte::interrupt_flag())
+  // --sandbox (docs/security.md): the restricted libraries and the file policy of lua/sandbox.h.
+  bool sandbox = false;
+  std::vector<std::string> allow_read, allow_write;  // --allow-read DIR, --allow-write DIR
+  // Lua instructions the script may run: -1 the default (kSandboxInstructions under --sandbox, else no
+  // limit), 0 no limit.
+  int64_t lua_instructions = -1;
+  uint64_t lua_memory = 0;  // bytes the Lua heap may hold; 0: the default, half of torte::memory_limit()
 };
+
+/// The instruction budget of --sandbox unless --lua-instructions says otherwise: about 85 times what the
+/// busiest shipped scene runs (minecraft.lua on the largest shipped world; docs/security.md has the numbers),
+/// and about half a minute of Lua.
+inline constexpr int64_t kSandboxInstructions = 10'000'000'000;
 
 enum ExitCode { kExitOk = 0, kExitError = 1, kExitInterrupted = 130 };
 
@@ -29,7 +41,13 @@ void open_torte_module(lua_State* L, const RunOptions& options);
 /// Makes `ctx` the RunContext the bindings of L consult (run_context(L)); it must outlive L.
 void set_run_context(lua_State* L, RunContext* ctx);
 
-// Returns the process exit code; errors are printed to stderr as "torte: error: <file>:<line>: <message>".
+/// Runs the script; returns the process exit code. Errors are printed to stderr as one line, "torte: error:
+/// <file>:<line>: <message>"; a run ended by Ctrl-C exits with kExitInterrupted and at most one line
+/// ("torte: interrupted while ...").
 int run_script(const RunOptions& options);
+
+/// For the SIGINT handler, after torte::request_interrupt(): makes the running script stop at its next Lua
+/// instruction (lua/script_limits.h; a render that is running stops between tiles by itself). Async-signal-safe.
+void interrupt_running_script() noexcept;
 
 }  // namespace torte::lua

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/memory_budget.h"
 #include "core/text.h"
+#include "core/read_guard.h"
 #include "geometry/mesh_io.h"
 
 namespace torte {
@@ -249,6 +250,7 @@ class Parser {
   void load_mtl(const std::string& path) {
     std::string text;
     try {
+      check_nested_read(path);  // under --sandbox the file policy applies to what an OBJ names too
       text = read_file_bytes(path);
     } catch (const Error& e) {
       out_.warnings.push_back(name_ + ": line " + std::to_string(line_) + ": material library " + e.what());

@@ -1,0 +1,2 @@
+-- expect: (error object is a table value)
+coroutine.wrap(function() error({}) end)()

@@ -1,0 +1,2 @@
+-- expect: (error object is a torte.scene value)
+error(torte.scene())

@@ -1,0 +1,3 @@
+-- expect: io.output: 'log.txt' (
+-- flags: --sandbox
+io.output("log.txt")

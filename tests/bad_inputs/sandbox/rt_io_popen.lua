@@ -1,0 +1,3 @@
+-- expect: attempt to call a nil value (field 'popen')
+-- flags: --sandbox
+io.popen("ls")

@@ -1,0 +1,3 @@
+-- expect: attempt to call a nil value (field 'exit')
+-- flags: --sandbox
+os.exit(0)

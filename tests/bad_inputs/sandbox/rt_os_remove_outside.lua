@@ -1,0 +1,3 @@
+-- expect: os.remove: 'not-here.txt'
+-- flags: --sandbox
+os.remove("not-here.txt")
