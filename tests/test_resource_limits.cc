@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/file_read.h"
 #include "core/memory_budget.h"
+#include "error_helpers.h"
 #include "core/quiet_stderr.h"
 #include "core/text.h"
 #include "film/image.h"
@@ -38,6 +39,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using test::error_of;
+using test::ScopedMemoryLimit;
+
 struct TempDir {
   fs::path path;
   explicit TempDir(const std::string& name)
@@ -55,21 +59,6 @@ struct TempDir {
     return *this / name;
   }
 };
-
-// Sets the memory limit for a scope (0 restores the default afterwards).
-struct MemoryLimit {
-  explicit MemoryLimit(uint64_t bytes) { set_memory_limit(bytes); }
-  ~MemoryLimit() { set_memory_limit(0); }
-};
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 // A string literal with its NUL bytes.
 template <size_t N>
@@ -117,7 +106,7 @@ TEST_CASE("limits: read_file_bytes stops at its size bound, which follows the me
              Contains("it holds 97.7 KB, over the limit of 97.7 KB for a file read whole"));
   CHECK_THAT(error_of([&] { read_file_bytes("/proc/self/status", 16); }), Contains("over the limit of 16 B"));
   {
-    MemoryLimit limit(uint64_t(256) << 10);  // a quarter: 64 KB
+    ScopedMemoryLimit limit(uint64_t(256) << 10);  // a quarter: 64 KB
     CHECK(max_file_bytes() == uint64_t(64) << 10);
     CHECK_THAT(error_of([&] { load_mesh(path); }), Contains("over the limit of 64.0 KB") && Contains("--max-memory"));
   }
@@ -197,7 +186,7 @@ TEST_CASE("limits: a PLY count the file cannot hold fails at the end of the data
   });
   CHECK(e == "v.ply: the header declares 5000000000 vertices, more than the limit of 4294967295 (2^32 - 1)");
   // A face count far past the file reserves nothing for it (the reservation follows the file's size).
-  MemoryLimit limit(uint64_t(1) << 30);
+  ScopedMemoryLimit limit(uint64_t(1) << 30);
   const std::string faces = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                             "property float z\nelement face 900000000000\nproperty list uchar int vertex_indices\n"
                             "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
@@ -214,7 +203,7 @@ TEST_CASE("limits: subdivide checks the whole result before the first level", "[
   CHECK(s.triangles == 12 * 64);
   CHECK(s.vertices >= subdivide(cube, 3).vertex_count());
   // 12 x 4^10 = 12.6 M triangles, a few hundred MB: over a 64 MB budget, refused at once with the size asked.
-  MemoryLimit limit(uint64_t(64) << 20);
+  ScopedMemoryLimit limit(uint64_t(64) << 20);
   const std::string e = error_of([&] { subdivide(cube, 10); });
   CHECK_THAT(e, Contains("subdivide: 10 levels of 12 triangles (12582912 triangles) needs ~") &&
                     Contains("over the memory limit of 64.0 MB"));
@@ -235,7 +224,7 @@ TEST_CASE("limits: render sizes are bounded and the film is checked against the 
   s.spp = 1;
   s.width = s.height = 8192;  // 64 M pixels: 1.7 GB of film and image
   CHECK(render_memory_bytes(s) == uint64_t(8192) * 8192 * 28);
-  MemoryLimit limit(uint64_t(256) << 20);
+  ScopedMemoryLimit limit(uint64_t(256) << 20);
   CHECK_THAT(error_of([&] { render(*scene, s); }),
              Contains("the 8192x8192 image's film needs ~1.8 GB") && Contains("over the memory limit of 256 MB"));
 }
@@ -281,14 +270,14 @@ TEST_CASE("limits: BVH builds, environment maps and voxel grids check the budget
     prims[i] = Bounds3f{Vec3f(f, f, f), Vec3f(f + 1, f + 1, f + 1)};
   }
   {
-    MemoryLimit limit(uint64_t(96) << 20);
+    ScopedMemoryLimit limit(uint64_t(96) << 20);
     CHECK_THAT(error_of([&] { build_binary_bvh(prims, BvhBuildOptions{}); }),
                Contains("BVH build of 1048576 primitives needs ~164 MB") && Contains("over the memory limit"));
   }
   Image sky(2048, 1024);
   for (Rgb& p : sky.pixels) p = Rgb(1);
   {
-    MemoryLimit limit(uint64_t(48) << 20);
+    ScopedMemoryLimit limit(uint64_t(48) << 20);
     CHECK_THAT(error_of([&] { make_environment_map(sky, Transform(), Rgb(1)); }),
                Contains("environment map of 2048x1024 pixels needs ~") && Contains("over the memory limit"));
   }
@@ -298,7 +287,7 @@ TEST_CASE("limits: BVH builds, environment maps and voxel grids check the budget
   CHECK(error_of([&] { grid.set(1 << 24, 0, 0, 1); }) ==
         "voxel grid: chunk (1048576, 0, 0) is out of range (chunk coordinates lie in [-2^20, 2^20), voxel "
         "coordinates in [-2^24, 2^24))");
-  MemoryLimit limit(resident_memory() + (uint64_t(64) << 20));
+  ScopedMemoryLimit limit(resident_memory() + (uint64_t(64) << 20));
   const std::string e = error_of([&] {
     for (int c = 0; c < 1 << 16; ++c) grid.set(16 * (c & 255), 16 * (c >> 8), 0, 1);  // 8 KB per chunk
   });

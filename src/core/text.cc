@@ -1,5 +1,6 @@
 #include "core/text.h"
 
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -101,6 +102,13 @@ std::string one_line_message(std::string_view text, std::string_view fallback, s
     out += "...";
   }
   return out;
+}
+
+std::string format_number(float v) {
+  if (std::isnan(v)) return "nan";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", double(v));
+  return buf;
 }
 
 }  // namespace torte

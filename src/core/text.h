@@ -21,4 +21,7 @@ std::string escape_text(std::string_view text, size_t max_chars = 200);
 std::string one_line_message(std::string_view text, std::string_view fallback = "unknown error",
                              size_t max_chars = 300);
 
+/// A float for a message: "%g", and "nan" for every NaN (printf writes "-nan" for some).
+std::string format_number(float v);
+
 }  // namespace torte

@@ -4,17 +4,9 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/text.h"
 
 namespace torte {
-
-namespace {
-std::string format_number(float v) {
-  if (std::isnan(v)) return "nan";  // not "-nan"
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", double(v));
-  return buf;
-}
-}  // namespace
 
 void TriangleMesh::validate(const std::string& what) const {
   const size_t n = x.size();

@@ -8,17 +8,9 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/memory_budget.h"
+#include "core/text.h"
 
 namespace torte {
-
-namespace {
-std::string format_number(float v) {
-  if (std::isnan(v)) return "nan";  // not "-nan"
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", double(v));
-  return buf;
-}
-}  // namespace
 
 // State shared while one scene is flattened: materials and textures go to the scene's tables once each, every
 // group with shapes becomes one prototype, and every path through the nesting of groups one instance.

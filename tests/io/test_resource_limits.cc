@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "core/memory_budget.h"
+#include "../error_helpers.h"
 #include "film/image_io.h"
 #include "runtime.h"
 #include "test_support.h"
@@ -26,23 +27,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using test::error_of;
+using test::ScopedMemoryLimit;
+
 struct LimitDir : test::TempDir {
   explicit LimitDir(const std::string& name) : test::TempDir("limits", name) {}
 };
-
-struct MemoryLimit {
-  explicit MemoryLimit(uint64_t bytes) { set_memory_limit(bytes); }
-  ~MemoryLimit() { set_memory_limit(0); }
-};
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 // A 512x512 checker in 64x64 tiles, as a tiled half-float EXR (the image cache reads it a tile at a time).
 void write_tiled_exr(const std::string& path) {
@@ -112,7 +102,7 @@ TEST_CASE("limits io: image sizes from the header are checked against the budget
   LimitDir dir("budget");
   // Headers only: 4096x4096 RGB, 48 MB of 8-bit texels (64 MB with MIP levels), 400 MB decoded as floats.
   const std::string ppm = dir.write("big.ppm", "P6\n4096 4096\n255\n" + std::string(1000, '\x40'));
-  MemoryLimit limit(uint64_t(32) << 20);
+  ScopedMemoryLimit limit(uint64_t(32) << 20);
   CHECK_THAT(error_of([&] { open_image_texture(ppm, {}); }),
              Contains("image texture '" + ppm + "' (4096x4096, 3 channels) needs ~64.0 MB") &&
                  Contains("over the memory limit of 32.0 MB"));
@@ -173,7 +163,7 @@ ok, e = pcall(torte.data.nbt, ints)
 assert(not ok and e:find("an NBT int array of 2000000 entries needs ~30.5 MB", 1, true), e)
 assert(#torte.data.nbt("\x09\x00\x01L\x0a" .. string.pack(">i4", 1000) .. ("\0"):rep(1000)) == 1000)
 )LUA");
-  MemoryLimit limit(resident_memory() + (uint64_t(24) << 20));
+  ScopedMemoryLimit limit(resident_memory() + (uint64_t(24) << 20));
   lua::RunOptions options;
   options.script = script;
   options.quiet = true;
