@@ -51,6 +51,8 @@ read -r -a flag_words <<<"$(subst "$flags")"
 read -r -a arg_words <<<"$(subst "$args")"
 
 cd "$tmp" || exit 2
+# Helpers shared by cases (lib/case.lua, lib/mc_region.lua): `require "case"`.
+export LUA_PATH_5_4="$(dirname "$(readlink -f "$0")")/lib/?.lua;;"
 if [[ -n $sigint ]]; then
   "$torte" --quiet "${flag_words[@]}" "$case_file" "${arg_words[@]}" >stdout.txt 2>stderr.txt &
   pid=$!

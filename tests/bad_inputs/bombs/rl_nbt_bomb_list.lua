@@ -3,10 +3,9 @@
 -- expect: torte.data.inflate: the stream decompresses to more than 256 MB
 -- Raw deflate of zeros without a compressor: one fixed-Huffman block holding a literal 0, then copies of 258
 -- bytes at distance 1 (13 bits each; 8 of them are the same 13 bytes), 159 output bytes per input byte.
-local function deflate_zeros(copies8)
-  return "\x63\x18\x05" .. ("\xa3\x60\x14\x8c\x82\x51\x30\x0a\x46\xc1\x28\x18\x05"):rep(copies8) .. "\x00"
-end
 -- The NBT head, then zeros (TAG_End: empty compounds) from the bomb: a list of compounds, 0x7fffffff long.
+local case = require "case"  -- tests/bad_inputs/lib/case.lua
+local deflate_zeros = case.deflate_zeros
 local head = "\x09\x00\x01L\x0a\x7f\xff\xff\xff"
 local z = "\x78\x01" .. deflate_zeros(2080000)
 local nbt = torte.data.nbt(head .. torte.data.inflate(z))

@@ -1,7 +1,6 @@
 -- A 1.16 section whose palette is a list of ints instead of compounds.
 -- expect: section Y=4: palette entry 1 is a number, not a compound
 -- where: r\.0\.0\.mca: chunk \(0, 0\) \(entry 0,0 of the region\)
--- args: lib=$CASE/mc_region.lib
-local W = dofile(torte.args.lib)
+local W = require "mc_region"  -- tests/bad_inputs/lib/mc_region.lua
 W.region("r.0.0.mca", {{0, 0, W.chunk(0, 0, {W.section(4, {W.int(1), W.int(2)})})}})
 require("minecraft.world").load{dir = "."}

@@ -1,8 +1,7 @@
 -- 9 sections of 4096 distinct (unknown) block names each: more block states than 16-bit voxel ids can hold.
 -- expect: too many distinct block states for 16-bit voxel ids
 -- where: r\.0\.0\.mca: chunk \(0, 0\) \(entry 0,0 of the region\)
--- args: lib=$CASE/mc_region.lib
-local W = dofile(torte.args.lib)
+local W = require "mc_region"  -- tests/bad_inputs/lib/mc_region.lua
 local sections = {}
 for y = 0, 8 do
   local names = {}

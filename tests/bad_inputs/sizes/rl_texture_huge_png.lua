@@ -2,11 +2,8 @@
 -- failed allocation used to leave a render thread waiting forever).
 -- expect: image texture 'rl_huge.png' (100000x100000, 3 channels) needs ~
 -- timeout: 30
-local function write(name, bytes)
-  local f = assert(io.open(name, "wb"))
-  f:write(bytes)
-  f:close()
-end
+local case = require "case"  -- tests/bad_inputs/lib/case.lua
+local write, textured = case.write, case.textured
 local function crc32(s)  -- for PNG chunks
   local c = 0xffffffff
   for i = 1, #s do
@@ -16,13 +13,6 @@ local function crc32(s)  -- for PNG chunks
   return c ~ 0xffffffff
 end
 local function chunk(kind, data) return string.pack(">I4", #data) .. kind .. data .. string.pack(">I4", crc32(kind .. data)) end
-local function textured(tex)  -- renders a sphere with the texture, so its lookups happen
-  local s = torte.scene()
-  s:add(torte.shape.sphere{radius = 1, material = torte.material.matte{color = tex}})
-  s:add(torte.light.point{position = {0, 2, -4}, intensity = {20, 20, 20}})
-  return torte.render{scene = s, camera = torte.camera.perspective{eye = {0, 0, -3}, look_at = {0, 0, 0}},
-                      width = 16, height = 16, spp = 1}
-end
 local ihdr = string.pack(">I4I4BBBBB", 100000, 100000, 8, 2, 0, 0, 0)
 write("rl_huge.png", "\x89PNG\r\n\x1a\n" .. chunk("IHDR", ihdr) .. chunk("IDAT", "\x78\x01") .. chunk("IEND", ""))
 local t = torte.texture.image{file = "rl_huge.png"}
