@@ -33,11 +33,12 @@ test: build
 # Sanitizer builds (tests/sanitizers/README.md): clang with -fsanitize=address,undefined in $(ASAN_BUILD), or
 # -fsanitize=thread in $(TSAN_BUILD), the whole suite built; heavy tests run at reduced sizes
 # (TORTE_TEST_REDUCED=1, set by the build's ctest environment with the sanitizer options and suppressions).
-# `make test-tsan` runs the threaded tests (TSAN_TESTS, a ctest regex), or all with TSAN_TESTS=.
+# `make test-tsan` runs the tests matching TSAN_TESTS (a ctest regex; default all). It is not clean yet and not in
+# .ci/run: Debian's TBB is not instrumented (tests/sanitizers/README.md).
 ASAN_BUILD ?= build-asan
 TSAN_BUILD ?= build-tsan
 SANITIZE_CONFIGURE = cmake -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ -DTORTE_BUILD_BENCH=OFF
-TSAN_TESTS ?= $(TSAN_DEFAULT_TESTS)
+TSAN_TESTS ?= .
 
 test-sanitize: deps
 	$(SANITIZE_CONFIGURE) -DTORTE_SANITIZE=address,undefined -S . -B $(ASAN_BUILD) $(CMAKE_ARGS)
