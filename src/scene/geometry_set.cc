@@ -121,7 +121,7 @@ void GeometrySet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const s
     std::memcpy(scratch.data() + 12 * (mesh_first[m] + local), t, 12);
   };
   tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
-    uint32_t* next = &rank[b * mesh_count];
+    uint32_t* next = rank.data() + b * mesh_count;  // no element when there are no meshes
     for (size_t i = block_begin(b); i < block_begin(b + 1); ++i) {
       const uint32_t g = order[i], m = mesh_of(g), local = next[m]++;
       if (!one_mesh) tri_ref_[i] = mesh_first[m] + local;

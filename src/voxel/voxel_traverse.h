@@ -90,6 +90,14 @@ inline bool make_local(const VoxelTree& tree, const Ray& ray, LocalRay* r, float
   return *t0 <= *t1;
 }
 
+// floor(p) as an int, limited to [lo - 1, hi]: a position far outside the box (or NaN, from a NaN ray) must not
+// reach the float-to-int conversion, which is undefined out of range. The caller's clamp gives the same cell.
+inline int floor_within(float p, int lo, int hi) {
+  const float f = std::floor(p);
+  if (!(f >= float(lo - 1))) return lo - 1;
+  return f <= float(hi) ? int(f) : hi;
+}
+
 // The cell of box [blo, bhi) where the ray is at distance t, having entered through a plane of axis `entry`
 // (-1: the origin's own cell).
 inline void entry_cell(const LocalRay& r, const int blo[3], const int bhi[3], float t, int entry, int v[3]) {
@@ -98,7 +106,7 @@ inline void entry_cell(const LocalRay& r, const int blo[3], const int bhi[3], fl
       v[a] = r.d[a] > 0 ? blo[a] : bhi[a] - 1;
     } else {
       const float p = entry < 0 ? r.o[a] : r.o[a] + r.d[a] * t;
-      int c = int(std::floor(p));
+      int c = floor_within(p, blo[a], bhi[a]);
       // On a cell boundary, the cell the ray goes into (as the tree picks the side of a split plane).
       if (float(c) == p && r.d[a] < 0) --c;
       v[a] = std::clamp(c, blo[a], bhi[a] - 1);

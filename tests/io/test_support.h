@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -60,6 +61,13 @@ inline std::vector<std::string> lines_of(const std::string& text) {
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   return lines;
+}
+
+// Whether heavy tests run at reduced sizes: TORTE_TEST_REDUCED set and not "0", as the sanitizer builds' ctest
+// environment does (tests/sanitizers/README.md).
+inline bool reduced_test_sizes() {
+  const char* v = std::getenv("TORTE_TEST_REDUCED");
+  return v != nullptr && *v != '\0' && std::string(v) != "0";
 }
 
 struct Result {
