@@ -78,8 +78,10 @@ TEST_CASE("limits io: a tiled texture whose later tiles are cut fails the render
   CHECK(ok.code == 0);
   test::Result bad = test::run_torte(dir, {"--quiet", script, "file=cut.exr"}, 60, dir.path.string());
   const std::string line = test::check_error(bad);
+  // OpenImageIO keeps its error text per thread, so the reason is its own when the failing read ran on the thread
+  // that asks, and torte's generic one otherwise; either way the line names the file and the render call.
   CHECK_THAT(line, Contains("scene.lua:") && Contains(": cannot read image texture 'cut.exr' while rendering: ") &&
-                       Contains("Unexpected end of file"));
+                       (Contains("Unexpected end of file") || Contains("the pixel data is truncated or corrupt")));
   CHECK(bad.out.empty());  // no mean printed: the render did not return an image
 }
 
