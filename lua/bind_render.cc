@@ -278,8 +278,6 @@ int l_render(lua_State* L) {
   } catch (const Error& e) {
     throw Error(std::string("torte.render: ") + e.what());  // the shape, light or group named comes after
   }
-  flat->camera = *camera;
-  flat->has_camera = true;
   if (const std::string why = black_image_reason(*flat); !why.empty()) {
     luaL_where(L, 1);
     std::fprintf(stderr, "torte: warning: %storte.render: %s\n", lua_tostring(L, -1), why.c_str());
@@ -291,7 +289,7 @@ int l_render(lua_State* L) {
   auto img = std::make_shared<RenderedImage>();
   RenderOutput out;
   try {
-    out = render(*flat, s, ctx.quiet ? nullptr : &progress, ctx.cancel);
+    out = render(*flat, Camera(*camera, s.width, s.height), s, ctx.quiet ? nullptr : &progress, ctx.cancel);
   } catch (...) {
     progress.finish();
     throw;

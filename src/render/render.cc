@@ -43,7 +43,6 @@ std::vector<int> make_passes(int spp) {
 }
 
 void validate(const Scene& scene, const RenderSettings& s) {
-  if (!scene.has_camera) throw Error("the scene has no camera");
   if (s.width <= 0 || s.height <= 0) throw Error("image width and height must be positive");
   if (uint64_t(s.width) * uint64_t(s.height) > kMaxRenderPixels)
     throw Error("a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image has " +
@@ -73,13 +72,12 @@ uint64_t render_memory_bytes(const RenderSettings& s) {
   return pixels * (sizeof(PixelSum) + sizeof(Rgb));  // the film, then the image made from it
 }
 
-RenderOutput render(const Scene& scene, const RenderSettings& settings, ProgressSink* progress,
+RenderOutput render(const Scene& scene, const Camera& camera, const RenderSettings& settings, ProgressSink* progress,
                     const std::atomic<bool>* cancel) {
   validate(scene, settings);
   reserve_memory(render_memory_bytes(settings),
                  "the " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " image's film");
   const auto start = std::chrono::steady_clock::now();
-  const Camera camera(scene.camera, settings.width, settings.height);
   const Sampler sampler(settings.seed);
   const std::vector<Tile> tiles = make_tiles(settings.width, settings.height, settings.tile_size);
   std::vector<PixelSum> film(size_t(settings.width) * settings.height);

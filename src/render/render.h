@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "camera/camera.h"
 #include "film/filter.h"
 #include "film/image.h"
 #include "scene/scene.h"
@@ -76,10 +77,11 @@ struct RenderOutput {
 // Bytes render() allocates for an image of these settings (film and result), checked against the memory budget.
 uint64_t render_memory_bytes(const RenderSettings& settings);
 
-// Renders the scene's camera view. `cancel` (may be null) stops the render between tiles; the image then holds
-// the samples done so far. Throws torte::Error for invalid settings, a scene without a camera, a film over the
-// memory budget, or an image texture that fails to read while rendering (naming the file).
-RenderOutput render(const Scene& scene, const RenderSettings& settings, ProgressSink* progress = nullptr,
-                    const std::atomic<bool>* cancel = nullptr);
+// Renders the scene as `camera` sees it (a Camera made for settings.width x settings.height). `cancel` (may be
+// null) stops the render between tiles; the image then holds the samples done so far. Throws torte::Error for
+// invalid settings, a film over the memory budget, or an image texture that fails to read while rendering
+// (naming the file).
+RenderOutput render(const Scene& scene, const Camera& camera, const RenderSettings& settings,
+                    ProgressSink* progress = nullptr, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace torte

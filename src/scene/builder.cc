@@ -356,8 +356,6 @@ std::shared_ptr<Scene> SceneBuilder::flatten(ProgressCounter* progress) const {
 
   for (const Light& l : lights_) scene->lights.push_back(l);
   scene->textures = f.textures.finish();
-  scene->camera = camera_;
-  scene->has_camera = has_camera_;
   scene->finalize(progress);
   return scene;
 }

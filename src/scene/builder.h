@@ -55,7 +55,6 @@ class SceneBuilder {
   void add_shape(ShapeDesc shape) { shapes_.push_back(std::move(shape)); }
   void add_instance(InstanceDesc instance) { instances_.push_back(std::move(instance)); }
   void add_light(const Light& light) { lights_.push_back(light); }
-  void set_camera(const CameraDesc& camera) { camera_ = camera; has_camera_ = true; }
   size_t shape_count() const { return shapes_.size(); }
   size_t light_count() const { return lights_.size(); }
   size_t instance_count() const { return instances_.size(); }
@@ -70,8 +69,6 @@ class SceneBuilder {
   std::vector<ShapeDesc> shapes_;
   std::vector<InstanceDesc> instances_;
   std::vector<Light> lights_;
-  CameraDesc camera_;
-  bool has_camera_ = false;
 };
 
 }  // namespace torte
