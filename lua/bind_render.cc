@@ -12,6 +12,7 @@
 #include "file_access.h"
 #include "film/image_io.h"
 #include "progress.h"
+#include "render/render_settings.h"
 #include "script_limits.h"
 #include "types.h"
 
@@ -249,19 +250,8 @@ int l_render(lua_State* L) {
   s.seed = uint64_t(seed);
   if (auto f = kw.object<Filter>("filter", true)) s.filter = *f;
   kw.finish();
-  if (s.width <= 0 || s.height <= 0) kw.fail("width", "and 'height' must be positive");
-  if (uint64_t(s.width) * uint64_t(s.height) > kMaxRenderPixels)
-    kw.fail("width", "x 'height' = " + std::to_string(s.width) + "x" + std::to_string(s.height) + " = " +
-                         std::to_string(uint64_t(s.width) * uint64_t(s.height)) +
-                         " pixels, more than the limit of " + std::to_string(kMaxRenderPixels) + " (2^28)");
-  if (s.spp <= 0 || s.spp > kMaxSpp)
-    kw.fail("spp", "must be in [1, " + std::to_string(kMaxSpp) + "], got " + std::to_string(s.spp));
-  if (s.max_depth < 0 || s.max_depth > 10000)
-    kw.fail("max_depth", "must be in [0, 10000], got " + std::to_string(s.max_depth));
-  if (s.vpl_sets < 1 || s.vpl_sets > 65536) kw.fail("vpl_sets", "must be in [1, 65536]");
-  if (s.light_paths < 1 || s.light_paths > (1 << 24)) kw.fail("light_paths", "must be in [1, 16777216]");
-  if (!(s.g_limit > 0)) kw.fail("g_limit", "must be positive (relative to 1/R^2, R the scene's bounding radius)");
-  if (!(s.vpl_roulette >= 0 && s.vpl_roulette <= 1)) kw.fail("vpl_roulette", "must be in [0, 1]");
+  // The rules are render()'s (render/render_settings.h); checked here to name the keyword before the build.
+  if (const auto problem = find_settings_problem(s)) kw.fail(problem->key, problem->problem);
   if (ctx.spp_override > 0) s.spp = ctx.spp_override;
   if (ctx.seed_override >= 0) s.seed = uint64_t(ctx.seed_override);
   if (ctx.interrupted || interrupt_requested()) throw Interrupted("interrupted: torte.render was not started");

@@ -217,10 +217,13 @@ TEST_CASE("limits: render sizes are bounded and the film is checked against the 
   RenderSettings s;
   s.width = 1 << 15, s.height = 1 << 14;
   CHECK(error_of([&] { test::render_view(*scene, cam, s); }) ==
-        "a 32768x16384 image has 536870912 pixels, more than the limit of 268435456 (2^28)");
+        "'width' x 'height' = 32768x16384 = 536870912 pixels, more than the limit of 268435456 (2^28)");
   s.width = s.height = 8, s.spp = kMaxSpp + 1;
-  CHECK(error_of([&] { test::render_view(*scene, cam, s); }) == "spp must be in [1, 16777216], got 16777217");
+  CHECK(error_of([&] { test::render_view(*scene, cam, s); }) == "'spp' must be in [1, 16777216], got 16777217");
   s.spp = 1;
+  // A camera made for another size would leave part of the image unseen (or look outside it).
+  CHECK(error_of([&] { render(*scene, Camera(cam, 16, 8), s); }) ==
+        "the camera was made for a 16x8 image, the settings ask for 8x8");
   s.width = s.height = 8192;  // 64 M pixels: 1.7 GB of film and image
   CHECK(render_memory_bytes(s) == uint64_t(8192) * 8192 * 28);
   ScopedMemoryLimit limit(uint64_t(256) << 20);

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/memory_budget.h"
 #include "render/igi.h"
+#include "render/render_settings.h"
 #include "render/wavefront.h"
 
 namespace torte {
@@ -42,22 +43,6 @@ std::vector<int> make_passes(int spp) {
   return passes;
 }
 
-void validate(const Scene& scene, const RenderSettings& s) {
-  if (s.width <= 0 || s.height <= 0) throw Error("image width and height must be positive");
-  if (uint64_t(s.width) * uint64_t(s.height) > kMaxRenderPixels)
-    throw Error("a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image has " +
-                std::to_string(uint64_t(s.width) * uint64_t(s.height)) + " pixels, more than the limit of " +
-                std::to_string(kMaxRenderPixels) + " (2^28)");
-  if (s.spp <= 0 || s.spp > kMaxSpp)
-    throw Error("spp must be in [1, " + std::to_string(kMaxSpp) + "], got " + std::to_string(s.spp));
-  if (s.max_depth < 0 || s.max_depth > 10000) throw Error("max_depth must be in [0, 10000]");
-  if (s.tile_size <= 0) throw Error("tile size must be positive");
-  if (s.vpl_sets < 1 || s.vpl_sets > 65536) throw Error("vpl_sets must be in [1, 65536]");
-  if (s.light_paths < 1 || s.light_paths > (1 << 24)) throw Error("light_paths must be in [1, 2^24]");
-  if (!(s.g_limit > 0)) throw Error("g_limit must be positive (infinity disables the clamp)");
-  if (!(s.vpl_roulette >= 0 && s.vpl_roulette <= 1)) throw Error("vpl_roulette must be in [0, 1]");
-}
-
 // A failed image lookup returns black: the render stops and fails naming the file instead of writing that.
 std::string texture_failure(const Scene& scene) {
   for (const auto& image : scene.textures.images())
@@ -74,7 +59,7 @@ uint64_t render_memory_bytes(const RenderSettings& s) {
 
 RenderOutput render(const Scene& scene, const Camera& camera, const RenderSettings& settings, ProgressSink* progress,
                     const std::atomic<bool>* cancel) {
-  validate(scene, settings);
+  validate(settings, camera);
   reserve_memory(render_memory_bytes(settings),
                  "the " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " image's film");
   const auto start = std::chrono::steady_clock::now();
