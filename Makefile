@@ -10,7 +10,8 @@ CMAKE_ARGS ?=
 CXX_COMPILER ?= clang++
 CONFIGURE = cmake -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=$(CXX_COMPILER)
 
-.PHONY: all deps configure build demo test test-sanitize test-tsan bench bench-scalar-vs-simd clean
+.PHONY: all deps configure build demo test test-sanitize test-tsan bench bench-scalar-vs-simd bench-cycles \
+        bench-startup clean
 
 all: build
 
@@ -67,6 +68,25 @@ bench:
 	cmake --build $(BUILD) -j $(JOBS) --target torte_bench embree-compare
 	TORTE_BENCH_FULL=$(BENCH_FULL) ./$(BUILD)/bench/torte_bench $(BENCH_ARGS)
 	TORTE_BENCH_FULL=$(BENCH_FULL) ./$(BUILD)/bench/embree-compare $(COMPARE_ARGS)
+
+# torte against Blender's Cycles (bench/cycles/run.sh; install-deps.sh --cycles installs Debian's blender): the
+# Cornell box and the dragon scene at CYCLES_SIZE^2, CYCLES_SPP spp, 64 bounces, CYCLES_THREADS threads; prints both
+# times (torte: the whole process; Cycles: its render call), the ratio and the region means of both images.
+# CYCLES_SCENES picks scenes (cornell dragon). Takes a few minutes: Cycles alone needs ~1 min per scene.
+CYCLES_SCENES ?= cornell dragon
+CYCLES_SIZE ?= 256
+CYCLES_SPP ?= 1024
+CYCLES_THREADS ?= 2
+
+bench-cycles:
+	bash scripts/install-deps.sh --cycles
+	$(CONFIGURE) -S . -B $(BUILD) $(CMAKE_ARGS)
+	cmake --build $(BUILD) -j $(JOBS) --target torte
+	SIZE=$(CYCLES_SIZE) SPP=$(CYCLES_SPP) THREADS=$(CYCLES_THREADS) bash bench/cycles/run.sh ./$(BUILD)/torte $(CYCLES_SCENES)
+
+# Start-up of torte on an empty script, median of 5 runs (issue 23: <= 0.1 s).
+bench-startup: build
+	bash bench/startup.sh ./$(BUILD)/torte 5
 
 # The same torte_bench cases in this SIMD build and in a scalar-only build ($(SCALAR_BUILD), TORTE_SCALAR_ONLY=ON);
 # prints per case both rates (Mrays/s; Msamples/s for the shading cases) and speedup=<simd/scalar>.

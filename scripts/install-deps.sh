@@ -1,11 +1,18 @@
 #!/usr/bin/env bash
 # Installs the Debian packages torte needs, and only those that are missing (idempotent).
-# Usage: scripts/install-deps.sh [--bench]   (--bench adds Embree for bench/embree-compare)
+# Usage: scripts/install-deps.sh [--bench] [--cycles]   (--bench adds Embree for bench/embree-compare,
+# --cycles Blender and Python image reading for make bench-cycles)
 set -euo pipefail
 packages=(cmake clang g++ make pkg-config ninja-build libhwy-dev libtbb-dev libopenimageio-dev liblua5.4-dev
           libbenchmark-dev catch2 zlib1g-dev liblz4-dev libxxhash-dev
           openimageio-tools)  # OIIO's CMake config checks that /usr/bin/iconvert etc. exist
-if [[ "${1:-}" == "--bench" ]]; then packages+=(libembree-dev); fi
+for arg in "$@"; do
+  case "$arg" in
+    --bench) packages+=(libembree-dev) ;;
+    --cycles) packages+=(blender python3-numpy python3-openimageio) ;;  # make bench-cycles: Cycles and region means
+    *) echo "install-deps: unknown option $arg" >&2; exit 2 ;;
+  esac
+done
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then missing+=("$p"); fi

@@ -48,6 +48,7 @@ const std::vector<Config> kConfigs = {
     {"textures.lua", {}, "meshes"},
     {"instancing.lua", {"levels=1"}, "meshes"},
     {"lucy-scale.lua", {"levels=0"}, "meshes"},
+    {"dragon-bench.lua", {"max_depth=8"}, "meshes"},
     {"minecraft.lua", {"world=prismarine-1.16", "box=100,0,-176,228,128,-48"}, "minecraft/prismarine-1.16", true, 4},
     {"minecraft.lua", {"world=prismarine-1.12.2", "box=120,0,-80,330,96,0"}, "minecraft/prismarine-1.12.2", true, 4},
     {"minecraft.lua", {"world=querz-nbt-1.18.2", "box=50,-64,50,150,112,150"}, "minecraft/querz-nbt-1.18.2", true,

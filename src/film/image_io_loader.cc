@@ -1,0 +1,74 @@
+// The executables' side of image I/O (image_module.h): each function of image_io.h and image_texture_oiio.h
+// loads the OpenImageIO module on first use and forwards to it, so a run that reads and writes no image never
+// pays for OpenImageIO's shared libraries. Errors of the readers and writers pass through unchanged.
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <climits>
+#include <mutex>
+#include <string>
+
+#include "core/error.h"
+#include "film/image_module.h"
+#include "texture/image_texture_oiio.h"
+
+namespace torte {
+
+namespace {
+
+// Next to the executable first (build/torte, an installed copy), then where the build put it (tests and tools
+// live in subdirectories of the build).
+std::string module_next_to_executable() {
+  char buf[PATH_MAX];
+  const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) return {};
+  std::string dir(buf, size_t(n));
+  dir.resize(dir.rfind('/') + 1);
+  return dir + TORTE_IMAGE_MODULE_NAME;
+}
+
+const ImageModuleApi* load_module() {
+  std::string tried;
+  void* handle = nullptr;
+  for (const std::string& path : {module_next_to_executable(), std::string(TORTE_IMAGE_MODULE_PATH)}) {
+    if (path.empty() || ::access(path.c_str(), R_OK) != 0) continue;
+    // RTLD_LAZY: binding all of OpenImageIO's dependencies' functions up front doubled the load time; the module
+    // is linked with --no-undefined, so nothing of torte's can be missing.
+    handle = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
+    if (handle) break;
+    tried = path + ": " + ::dlerror();
+  }
+  if (!handle)
+    throw Error("cannot load the image I/O module " + (tried.empty() ? std::string(TORTE_IMAGE_MODULE_PATH) : tried));
+  const auto entry = reinterpret_cast<decltype(&torte_image_module_api)>(::dlsym(handle, "torte_image_module_api"));
+  const ImageModuleApi* api = entry ? entry() : nullptr;
+  if (!api || api->abi != kImageModuleAbi) throw Error("the image I/O module " + std::string(TORTE_IMAGE_MODULE_PATH) +
+                                                       " does not match this executable (rebuild it)");
+  // If the executable exported these forwarding functions, the module would have bound to them: endless recursion.
+  if (api->read_image == &read_image) throw Error("the image I/O module resolved to the executable's loader");
+  return api;
+}
+
+const ImageModuleApi& module() {
+  static std::once_flag once;
+  static const ImageModuleApi* api = nullptr;
+  std::call_once(once, [] { api = load_module(); });  // a throw leaves the flag unset: the next call retries
+  return *api;
+}
+
+}  // namespace
+
+void write_image(const Image& image, const std::string& path, const WriteOptions& options) {
+  module().write_image(image, path, options);
+}
+
+Image read_image(const std::string& path) { return module().read_image(path); }
+
+std::shared_ptr<const ImageSource> open_image_texture(const std::string& path, const ImageTextureOptions& options) {
+  return module().open_image_texture(path, options);
+}
+
+float linear_to_srgb(float v) { return module().linear_to_srgb(v); }
+float srgb_to_linear(float v) { return module().srgb_to_linear(v); }
+
+}  // namespace torte
