@@ -12,7 +12,7 @@
 #include "geometry/quadric.h"
 #include "light/light.h"
 #include "material/material.h"
-#include "scene/geometry_set.h"
+#include "accel/geometry_set.h"
 #include "texture/texture.h"
 
 namespace torte {
