@@ -6,13 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "accel/aggregate.h"
 #include "camera/camera.h"
 #include "core/sampling.h"
 #include "geometry/mesh.h"
 #include "geometry/quadric.h"
 #include "light/light.h"
 #include "material/material.h"
-#include "accel/geometry_set.h"
 #include "texture/texture.h"
 
 namespace torte {
@@ -34,20 +34,7 @@ struct SurfaceEmission {
   bool two_sided = false;
 };
 
-// A group of shapes placed by instances (torte.group / scene:frame): its own geometry set, in group space.
-struct Prototype {
-  std::vector<TriangleMesh> meshes;
-  std::vector<Quadric> quadrics;
-  std::vector<VoxelGridAccel> grids;
-  GeometrySet geometry;
-};
-
-// One placement of a prototype. Nested frames are flattened into one instance per path through the nesting,
-// with the composed transform, so tracing needs two levels only (as Embree does).
-struct Instance {
-  Transform to_world;
-  uint32_t prototype;
-};
+// Prototype and Instance (the two levels of instancing) are in accel/aggregate.h.
 
 class Scene;
 /// Why every image of `scene` is black whatever the camera sees ("the scene has no lights and no emitting
@@ -90,9 +77,9 @@ class Scene {
   void finalize(ProgressCounter* progress = nullptr);
 
   // Top-level (non-instanced) geometry.
-  uint32_t triangle_count() const { return root_.triangle_count(); }
-  uint32_t primitive_count() const { return root_.primitive_count(); }
-  uint32_t object_of(uint32_t prim) const { return root_.object_of(prim); }
+  uint32_t triangle_count() const { return accel_.root().triangle_count(); }
+  uint32_t primitive_count() const { return accel_.root().primitive_count(); }
+  uint32_t object_of(uint32_t prim) const { return accel_.root().object_of(prim); }
   Bounds3f bounds() const { return bounds_; }
   // Bounding sphere of the scene (for infinite lights).
   Vec3f center() const { return center_; }
@@ -114,10 +101,8 @@ class Scene {
   size_t geometry_bytes() const;
 
  private:
-  void intersect_instances(const RaySoA& rays, size_t count, Hit* hits) const;
   void release_positions();
-  GeometrySet root_;
-  Bvh2 instance_bvh_;
+  Aggregate accel_;  // both levels of tracing; the forwards above are its seam to the renderer
   Bounds3f bounds_;
   Vec3f center_;
   float radius_ = 0;
