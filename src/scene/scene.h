@@ -94,6 +94,8 @@ class Scene {
   void occluded(const RaySoA& rays, size_t count, uint8_t* occluded, bool coherent) const;
   // The hit's surface in world space (instances map points, normals and tangents to the world).
   SurfaceHit surface(const Ray& ray, const Hit& hit) const;
+  /// Both levels of tracing (accel/aggregate.h), which the functions above forward to.
+  const Aggregate& accel() const { return accel_; }
   // Bytes of acceleration data (wide BVH nodes, leaf triangles, index maps, quadric and instance BVHs), all
   // levels, prototypes counted once.
   size_t accel_bytes() const;
