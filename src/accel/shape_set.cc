@@ -9,7 +9,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
-#include "traverse.h"
+#include "simd/traverse.h"
 
 namespace torte {
 

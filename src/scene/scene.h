@@ -26,13 +26,7 @@ struct SceneObject {
   int32_t area_light = -1;  // index into Scene::lights, -1 if the object does not emit
 };
 
-// Emission of a material override (a voxel face or an object of a voxel cell shape) that belongs to a Patches
-// light: what a ray hitting it sees, and which light samples it.
-struct SurfaceEmission {
-  Rgb radiance;
-  int32_t light = -1;  // index into Scene::lights (a LightKind::Patches light), -1 = does not emit
-  bool two_sided = false;
-};
+// SurfaceEmission (an override's emission) and EmitterView are in light/light.h.
 
 // Prototype and Instance (the two levels of instancing) are in accel/aggregate.h.
 
@@ -84,6 +78,9 @@ class Scene {
   // Bounding sphere of the scene (for infinite lights).
   Vec3f center() const { return center_; }
   float radius() const { return radius_; }
+  /// What light code reads (light/light.h); implicit, so light functions take a Scene where they take a view.
+  EmitterView emitters() const { return {meshes, quadrics, override_emission, center_, radius_}; }
+  operator EmitterView() const { return emitters(); }
 
   // One ray (tests, light tools). The renderer traces whole batches with the functions below.
   bool intersect(Ray& ray, Hit* hit) const;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "voxel_packet.h"
+#include "simd/voxel_packet.h"
 
 namespace torte {
 
