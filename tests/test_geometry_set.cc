@@ -14,7 +14,7 @@
 #include "geometry/mesh.h"
 #include "geometry/mesh_io.h"
 #include "geometry/triangle.h"
-#include "scene/geometry_set.h"
+#include "accel/geometry_set.h"
 #include "scene/scene.h"
 
 using namespace torte;

@@ -49,7 +49,7 @@ enum class CollapseMode {
 
 // Memory on the 100k-triangle dragon at the defaults: N = 8 nodes 6.8 B/tri, leaves 36.0 (+ 0.1 leaf-start
 // bitmap). prim_indices (4.0) is needed only until a renderer has put its meshes in leaf order, which
-// GeometrySet does (scene/geometry_set.h): the finished scene holds 61.0 B/tri with the mesh's indices and normals
+// GeometrySet does (accel/geometry_set.h): the finished scene holds 61.0 B/tri with the mesh's indices and normals
 // (test_geometry_set.cc checks <= 64, the issue "SIMD core" budget). Per-triangle SAH leaf costs (block 1) make
 // leaves of 1.8 triangles on average and 29 B/tri of nodes; block 4 makes leaves of 5.7 and 9.0 B/tri of nodes.
 struct BvhBuildOptions {

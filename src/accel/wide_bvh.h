@@ -51,7 +51,7 @@ struct WideBvh {
 // whose leaves it follows. `data` ends with kLeafPadding zeros so a kernel may load a full vector (up to 16
 // lanes) from any position inside any run.
 //
-// These are the only copy of the positions a renderer needs (scene/geometry_set.h shades from them):
+// These are the only copy of the positions a renderer needs (accel/shape_set.h shades from them):
 // `leaf_starts` (one bit per triangle, 0.125 B/tri) marks the first triangle of every leaf, so triangle(i)
 // finds its leaf's run layout from the leaf-order index alone.
 struct TriangleLeaves {

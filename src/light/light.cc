@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "geometry/quadric.h"
-#include "scene/scene.h"
+#include "geometry/surface_hit.h"
 
 namespace torte {
 
@@ -55,7 +55,7 @@ bool sample_sphere_cone(const Light& light, Vec3f p, Vec2f u, LightSample* s) {
 
 }  // namespace
 
-const SurfaceEmission* patch_emission(const Scene& scene, const SurfaceHit& hit) {
+const SurfaceEmission* patch_emission(const EmitterView& scene, const SurfaceHit& hit) {
   if (hit.material < 0 || size_t(hit.material) >= scene.override_emission.size()) return nullptr;
   const SurfaceEmission& e = scene.override_emission[size_t(hit.material)];
   return e.light >= 0 ? &e : nullptr;
@@ -98,7 +98,7 @@ Rgb escaped_radiance(const Light& light, Vec3f dir) {
   }
 }
 
-void sample_area_light_point(const Scene& scene, const Light& light, Vec2f u, Vec3f* q, Vec3f* n,
+void sample_area_light_point(const EmitterView& scene, const Light& light, Vec2f u, Vec3f* q, Vec3f* n,
                              float* pdf_area) {
   if (light.object < scene.meshes.size()) {
     const TriangleMesh& mesh = scene.meshes[light.object];
@@ -121,7 +121,7 @@ void sample_area_light_point(const Scene& scene, const Light& light, Vec2f u, Ve
   }
 }
 
-bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s) {
+bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s) {
   switch (light.kind) {
     case LightKind::Point:
     case LightKind::Spot: {
@@ -202,7 +202,7 @@ bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, Ligh
   return false;
 }
 
-float light_pdf(const Scene& scene, const Light& light, Vec3f p, Vec3f wi, const SurfaceHit* hit, float t) {
+float light_pdf(const EmitterView& scene, const Light& light, Vec3f p, Vec3f wi, const SurfaceHit* hit, float t) {
   switch (light.kind) {
     case LightKind::Point:
     case LightKind::Spot:
@@ -233,8 +233,8 @@ float light_pdf(const Scene& scene, const Light& light, Vec3f p, Vec3f wi, const
   return 0;
 }
 
-float light_power(const Scene& scene, const Light& light) {
-  const float disk = kPi * scene.radius() * scene.radius();  // cross-section of the scene's bounding sphere
+float light_power(const EmitterView& scene, const Light& light) {
+  const float disk = kPi * scene.radius * scene.radius;  // cross-section of the scene's bounding sphere
   switch (light.kind) {
     case LightKind::Point: return 4 * kPi * light.radiance.average();
     case LightKind::Spot:

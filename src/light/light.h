@@ -20,22 +20,41 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 
 #include "core/rgb.h"
 #include "core/sampling.h"
 #include "core/transform.h"
 #include "core/vec.h"
+#include "geometry/mesh.h"
+#include "geometry/quadric.h"
 #include "light/emissive_patches.h"
 #include "light/environment.h"
 #include "light/sky.h"
 
 namespace torte {
 
-class Scene;
 struct SurfaceHit;
-struct Quadric;
-struct SurfaceEmission;
+
+// Emission of a material override (a voxel face or an object of a voxel cell shape) that belongs to a Patches
+// light: what a ray hitting it sees, and which light samples it.
+struct SurfaceEmission {
+  Rgb radiance;
+  int32_t light = -1;  // index into the scene's lights (a LightKind::Patches light), -1 = does not emit
+  bool two_sided = false;
+};
+
+/// What light code reads of a scene: the shapes area lights sit on (scene objects: meshes[i] for i <
+/// meshes.size(), then quadrics), the emission of material overrides, and the bounding sphere (lights at
+/// infinity). A view: the scene owns the arrays and must outlive it. The Scene converts to one (scene/scene.h).
+struct EmitterView {
+  std::span<const TriangleMesh> meshes;
+  std::span<const Quadric> quadrics;
+  std::span<const SurfaceEmission> override_emission;
+  Vec3f center;
+  float radius = 0;
+};
 
 enum class LightKind : uint8_t { Point, Area, Infinite, Spot, Distant, Environment, Sky, Patches };
 
@@ -81,18 +100,18 @@ struct LightSample {
 // A point on an area light chosen uniformly by area (a triangle by area, then a uniform point; or the quadric's
 // area sampling): position, the emitting side's normal (the winding's, turned to the interpolated normal's side
 // when the mesh has normals: the side area_emission lets emit) and the density per unit area.
-void sample_area_light_point(const Scene& scene, const Light& light, Vec2f u, Vec3f* q, Vec3f* n, float* pdf_area);
+void sample_area_light_point(const EmitterView& scene, const Light& light, Vec2f u, Vec3f* q, Vec3f* n, float* pdf_area);
 
 // Samples light `l` as seen from point p. Returns false when the sample carries no light.
-bool sample_light(const Scene& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s);
+bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s);
 // Solid-angle density with which sample_light would have chosen direction wi from p, given that the ray hit
 // `hit` on this area light (for area lights), or escaped (infinite-like lights). 0 for delta lights.
-float light_pdf(const Scene& scene, const Light& light, Vec3f p, Vec3f wi, const SurfaceHit* hit, float t);
+float light_pdf(const EmitterView& scene, const Light& light, Vec3f p, Vec3f wi, const SurfaceHit* hit, float t);
 // Radiance an area light emits from `hit` towards -w (w is the ray direction).
 Rgb area_emission(const Light& light, const SurfaceHit& hit, Vec3f w);
 // Emission of a surface that is part of a Patches light (a voxel face or cell shape): the scene's
 // override_emission entry of its material override, or nullptr.
-const SurfaceEmission* patch_emission(const Scene& scene, const SurfaceHit& hit);
+const SurfaceEmission* patch_emission(const EmitterView& scene, const SurfaceHit& hit);
 // True for lights that rays escaping the scene can see (Infinite, Environment, Sky).
 inline bool is_infinite_light(const Light& light) {
   return light.kind == LightKind::Infinite || light.kind == LightKind::Environment || light.kind == LightKind::Sky;
@@ -102,7 +121,7 @@ inline bool is_infinite_light(const Light& light) {
 Rgb escaped_radiance(const Light& light, Vec3f dir);
 // Total emitted power, used to weight light selection (lights at infinity: the power through the scene's
 // bounding sphere).
-float light_power(const Scene& scene, const Light& light);
+float light_power(const EmitterView& scene, const Light& light);
 // Enables solid-angle sampling for an area light on a sphere placed by a similarity transform (no-op otherwise).
 void prepare_sphere_light(const Quadric& q, Light* light);
 // Spot light intensity factor for a direction at cos_theta from the axis (smoothstep, pbrt-v4).

@@ -4,7 +4,6 @@
 
 #include "core/sampling.h"
 #include "geometry/quadric.h"
-#include "scene/scene.h"
 
 namespace torte {
 
@@ -12,11 +11,11 @@ namespace {
 
 // Origin for light arriving from infinity along `dir`: a point on the disk of the scene's bounding sphere,
 // perpendicular to dir, moved back by the radius so the ray starts outside the scene. Returns the disk's area.
-float disk_origin(const Scene& scene, Vec3f dir, Vec2f u, Vec3f* origin) {
-  const float r = std::max(scene.radius(), 1e-6f);
+float disk_origin(const EmitterView& scene, Vec3f dir, Vec2f u, Vec3f* origin) {
+  const float r = std::max(scene.radius, 1e-6f);
   const Frame f = Frame::from_z(dir);
   const Vec2f d = sample_uniform_disk_concentric(u);
-  *origin = scene.center() + (f.s * d.x + f.t * d.y) * r - dir * (r * 1.001f);
+  *origin = scene.center + (f.s * d.x + f.t * d.y) * r - dir * (r * 1.001f);
   return kPi * r * r;
 }
 
@@ -42,7 +41,7 @@ bool emit_diffuse(Vec3f q, Vec3f n, float pdf_area, bool two_sided, Rgb radiance
 
 }  // namespace
 
-bool sample_emission(const Scene& scene, const Light& light, Vec2f u_pos, Vec2f u_dir, float uc,
+bool sample_emission(const EmitterView& scene, const Light& light, Vec2f u_pos, Vec2f u_dir, float uc,
                      EmissionSample* s) {
   s->normal = Vec3f(0, 0, 0);
   switch (light.kind) {

@@ -8,8 +8,6 @@
 
 namespace torte {
 
-class Scene;
-
 struct EmissionSample {
   Vec3f origin;  // a point on the light (point, spot, area) or on a disk covering the scene (distant, infinite)
   Vec3f dir;     // unit direction the light travels
@@ -22,6 +20,6 @@ struct EmissionSample {
 // direction; spot lights a uniform direction in the cone; distant and infinite-like lights a direction (fixed,
 // uniform or importance-sampled) and an origin on the disk of the scene's bounding sphere across it.
 // Returns false when the sample carries nothing.
-bool sample_emission(const Scene& scene, const Light& light, Vec2f u_pos, Vec2f u_dir, float uc, EmissionSample* s);
+bool sample_emission(const EmitterView& scene, const Light& light, Vec2f u_pos, Vec2f u_dir, float uc, EmissionSample* s);
 
 }  // namespace torte

@@ -2,15 +2,11 @@
 
 #include <algorithm>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 
 #include "core/error.h"
 #include "geometry/triangle.h"
 #include "scene/material_desc.h"
-#include "traverse.h"
 
 namespace torte {
 
@@ -27,23 +23,8 @@ void Scene::finalize(ProgressCounter* progress) {
       for (const TriangleMesh& m : proto->meshes) triangles += m.triangle_count();
     progress->total = GeometrySet::kProgressPerTriangle * triangles;
   }
-  root_.build(meshes, quadrics, grids, 0, progress);
-  object_base = uint32_t(meshes.size() + quadrics.size() + grids.size());
-  for (const auto& proto : prototypes) {
-    proto->geometry.build(proto->meshes, proto->quadrics, proto->grids, object_base, progress);
-    object_base += uint32_t(proto->meshes.size() + proto->quadrics.size() + proto->grids.size());
-  }
-  // The instance level: a BVH2 over the instances' world bounds (the bottom levels are the prototypes').
-  std::vector<Bounds3f> instance_bounds(instances.size());
-  for (size_t i = 0; i < instances.size(); ++i) {
-    if (instances[i].prototype >= prototypes.size()) throw Error("internal: instance of a missing prototype");
-    instance_bounds[i] = instances[i].to_world.apply(prototypes[instances[i].prototype]->geometry.bounds());
-    if (!instance_bounds[i].empty() && (!in_coordinate_range(instance_bounds[i].lo) || !in_coordinate_range(instance_bounds[i].hi)))
-      throw Error("instance " + std::to_string(i) + " (after unrolling the nesting of groups) places its group beyond "
-                  "+-1e18, the range the scene supports");
-  }
-  instance_bvh_.build(instance_bounds);
-  bounds_ = merge(root_.bounds(), instance_bvh_.bounds());
+  accel_.build(meshes, quadrics, grids, prototypes, instances, progress);
+  bounds_ = accel_.bounds();
 
   const Bounds3f b = bounds_;
   center_ = b.empty() ? Vec3f{} : b.center();
@@ -90,13 +71,18 @@ void Scene::release_positions() {
     for (TriangleMesh& m : proto->meshes) release(m);
 }
 
+namespace {
+// A one-ray RaySoA view of a Ray.
+struct SingleRay {
+  float v[7];
+  explicit SingleRay(const Ray& r) : v{r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.t_max} {}
+  RaySoA soa() const { return {&v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6]}; }
+};
+}  // namespace
+
 bool Scene::intersect(Ray& ray, Hit* hit) const {
   Hit h;
-  root_.intersect_one(ray, &h);
-  if (!instances.empty()) {
-    const float t[7] = {ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z, ray.t_max};
-    intersect_instances({&t[0], &t[1], &t[2], &t[3], &t[4], &t[5], &t[6]}, 1, &h);
-  }
+  accel_.intersect(SingleRay(ray).soa(), 1, &h, false);
   if (h.prim == kNoHit) return false;
   *hit = h;
   ray.t_max = h.t;
@@ -104,61 +90,20 @@ bool Scene::intersect(Ray& ray, Hit* hit) const {
 }
 
 bool Scene::occluded(const Ray& ray) const {
-  const float t[7] = {ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z, ray.t_max};
   uint8_t blocked = 0;
-  occluded({&t[0], &t[1], &t[2], &t[3], &t[4], &t[5], &t[6]}, 1, &blocked, false);
+  accel_.occluded(SingleRay(ray).soa(), 1, &blocked, false);
   return blocked != 0;
 }
 
 void Scene::intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
-  root_.intersect(rays, count, hits, coherent);
-  if (!instances.empty()) intersect_instances(rays, count, hits);
-}
-
-namespace {
-// The ray in an instance's space: the direction is mapped but not renormalized, so t means the same distance
-// along the ray in both spaces and hits compare directly.
-Ray to_instance(const Instance& inst, const Ray& world) {
-  const Transform& m = inst.to_world;
-  return m.apply_inverse(world);
-}
-}  // namespace
-
-void Scene::intersect_instances(const RaySoA& rays, size_t count, Hit* hits) const {
-  for (size_t i = 0; i < count; ++i) {
-    Ray r = ray_at(rays, i, std::min(rays.t_max[i], hits[i].t));
-    if (!(r.t_max > 0)) continue;
-    instance_bvh_.intersect(r, [&](uint32_t k, Ray& ray) {
-      const Instance& inst = instances[k];
-      Hit h = hits[i];
-      h.instance = k;
-      if (!prototypes[inst.prototype]->geometry.intersect_one(to_instance(inst, ray), &h)) return false;
-      hits[i] = h;
-      ray.t_max = h.t;
-      return true;
-    });
-  }
+  accel_.intersect(rays, count, hits, coherent);
 }
 
 void Scene::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const {
-  root_.occluded(rays, count, blocked, coherent);
-  if (instances.empty()) return;
-  for (size_t i = 0; i < count; ++i) {
-    if (blocked[i]) continue;
-    const Ray r = ray_at(rays, i);
-    blocked[i] = instance_bvh_.occluded(r, [&](uint32_t k, const Ray& ray) {
-      const Instance& inst = instances[k];
-      return prototypes[inst.prototype]->geometry.occluded_one(to_instance(inst, ray));
-    });
-  }
+  accel_.occluded(rays, count, blocked, coherent);
 }
 
-size_t Scene::accel_bytes() const {
-  size_t bytes = root_.accel_bytes() + instance_bvh_.nodes().size() * sizeof(Bvh2Node) +
-                 instance_bvh_.prim_indices().size() * sizeof(uint32_t);
-  for (const auto& proto : prototypes) bytes += proto->geometry.accel_bytes();
-  return bytes;
-}
+size_t Scene::accel_bytes() const { return accel_.accel_bytes(); }
 
 namespace {
 size_t mesh_bytes(const TriangleMesh& m) {
@@ -178,20 +123,7 @@ size_t Scene::geometry_bytes() const {
   return bytes;
 }
 
-SurfaceHit Scene::surface(const Ray& ray, const Hit& hit) const {
-  if (hit.instance == kNoHit) return root_.surface(hit, &ray);
-  const Instance& inst = instances[hit.instance];
-  const Ray local = to_instance(inst, ray);
-  SurfaceHit s = prototypes[inst.prototype]->geometry.surface(hit, &local);
-  const Transform& m = inst.to_world;
-  s.p = m.apply_point(s.p);
-  // Normals map by the inverse transpose, which keeps them on the front side even under mirroring.
-  s.ng = normalize(m.apply_normal(s.ng));
-  s.ns = normalize(m.apply_normal(s.ns));
-  s.dpdu = m.apply_vector(s.dpdu);
-  s.dpdv = m.apply_vector(s.dpdv);
-  return s;
-}
+SurfaceHit Scene::surface(const Ray& ray, const Hit& hit) const { return accel_.surface(ray, hit); }
 
 std::string black_image_reason(const Scene& scene) {
   const bool shapes = scene.primitive_count() > 0 || !scene.instances.empty();

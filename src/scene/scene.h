@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "accel/aggregate.h"
 #include "core/sampling.h"
 #include "geometry/mesh.h"
 #include "geometry/quadric.h"
 #include "light/light.h"
 #include "material/material.h"
-#include "scene/geometry_set.h"
 #include "texture/texture.h"
 
 namespace torte {
@@ -26,28 +26,9 @@ struct SceneObject {
   int32_t area_light = -1;  // index into Scene::lights, -1 if the object does not emit
 };
 
-// Emission of a material override (a voxel face or an object of a voxel cell shape) that belongs to a Patches
-// light: what a ray hitting it sees, and which light samples it.
-struct SurfaceEmission {
-  Rgb radiance;
-  int32_t light = -1;  // index into Scene::lights (a LightKind::Patches light), -1 = does not emit
-  bool two_sided = false;
-};
+// SurfaceEmission (an override's emission) and EmitterView are in light/light.h.
 
-// A group of shapes placed by instances (torte.group / scene:frame): its own geometry set, in group space.
-struct Prototype {
-  std::vector<TriangleMesh> meshes;
-  std::vector<Quadric> quadrics;
-  std::vector<VoxelGridAccel> grids;
-  GeometrySet geometry;
-};
-
-// One placement of a prototype. Nested frames are flattened into one instance per path through the nesting,
-// with the composed transform, so tracing needs two levels only (as Embree does).
-struct Instance {
-  Transform to_world;
-  uint32_t prototype;
-};
+// Prototype and Instance (the two levels of instancing) are in accel/aggregate.h.
 
 class Scene;
 /// Why every image of `scene` is black whatever the camera sees ("the scene has no lights and no emitting
@@ -88,13 +69,16 @@ class Scene {
   void finalize(ProgressCounter* progress = nullptr);
 
   // Top-level (non-instanced) geometry.
-  uint32_t triangle_count() const { return root_.triangle_count(); }
-  uint32_t primitive_count() const { return root_.primitive_count(); }
-  uint32_t object_of(uint32_t prim) const { return root_.object_of(prim); }
+  uint32_t triangle_count() const { return accel_.root().triangle_count(); }
+  uint32_t primitive_count() const { return accel_.root().primitive_count(); }
+  uint32_t object_of(uint32_t prim) const { return accel_.root().object_of(prim); }
   Bounds3f bounds() const { return bounds_; }
   // Bounding sphere of the scene (for infinite lights).
   Vec3f center() const { return center_; }
   float radius() const { return radius_; }
+  /// What light code reads (light/light.h); implicit, so light functions take a Scene where they take a view.
+  EmitterView emitters() const { return {meshes, quadrics, override_emission, center_, radius_}; }
+  operator EmitterView() const { return emitters(); }
 
   // One ray (tests, light tools). The renderer traces whole batches with the functions below.
   bool intersect(Ray& ray, Hit* hit) const;
@@ -105,6 +89,8 @@ class Scene {
   void occluded(const RaySoA& rays, size_t count, uint8_t* occluded, bool coherent) const;
   // The hit's surface in world space (instances map points, normals and tangents to the world).
   SurfaceHit surface(const Ray& ray, const Hit& hit) const;
+  /// Both levels of tracing (accel/aggregate.h), which the functions above forward to.
+  const Aggregate& accel() const { return accel_; }
   // Bytes of acceleration data (wide BVH nodes, leaf triangles, index maps, quadric and instance BVHs), all
   // levels, prototypes counted once.
   size_t accel_bytes() const;
@@ -112,10 +98,8 @@ class Scene {
   size_t geometry_bytes() const;
 
  private:
-  void intersect_instances(const RaySoA& rays, size_t count, Hit* hits) const;
   void release_positions();
-  GeometrySet root_;
-  Bvh2 instance_bvh_;
+  Aggregate accel_;  // both levels of tracing; the forwards above are its seam to the renderer
   Bounds3f bounds_;
   Vec3f center_;
   float radius_ = 0;

@@ -4,31 +4,26 @@
 #include <cmath>
 #include <vector>
 
-#include "scene/geometry_set.h"
-#include "voxel_packet.h"
+#include "simd/voxel_packet.h"
 
 namespace torte {
 
-VoxelCellGeometry::VoxelCellGeometry() : set(std::make_unique<GeometrySet>()) {}
-VoxelCellGeometry::~VoxelCellGeometry() = default;
-void VoxelCellGeometry::build() { set->build(meshes, quadrics, 0); }
-
 namespace {
 
-// Negative ids: the cell's GeometrySet, traced in unit-cell space.
+// Negative ids: the cell's ShapeSet, traced in unit-cell space.
 struct CellHandler {
   const VoxelGridAccel& grid;
   bool intersect(int16_t id, const Ray& r, Hit* h) const {
     const VoxelCellGeometry* c = grid.cell(id);
-    if (!c || c->set->empty()) return false;
+    if (!c || c->set.empty()) return false;
     Hit tmp;
-    if (!c->set->intersect_one(r, &tmp)) return false;
+    if (!c->set.intersect_one(r, &tmp)) return false;
     *h = tmp;
     return true;
   }
   bool occluded(int16_t id, const Ray& r) const {
     const VoxelCellGeometry* c = grid.cell(id);
-    return c && !c->set->empty() && c->set->occluded_one(r);
+    return c && !c->set.empty() && c->set.occluded_one(r);
   }
 };
 
@@ -70,32 +65,54 @@ bool VoxelGridAccel::occluded(const Ray& ray) const {
 
 namespace {
 constexpr int kVoxelPacket = 16;
-}
 
-void VoxelGridAccel::intersect_coherent(const Ray* set_rays, size_t count, uint32_t index, Hit* hits) const {
-  std::vector<Ray> rays(count);
-  for (size_t i = 0; i < count; ++i) {
-    rays[i] = to_set.apply_inverse(set_rays[i]);
-    rays[i].t_max = std::max(0.0f, std::min(set_rays[i].t_max, hits[i].t));
+// The grid-space rays and per-ray results of one packet call, kept per thread and grown only: a trace call
+// allocates nothing. The packet kernel reads the rays in grid space, so the transformed copy is the one it needs
+// (the set-space rays themselves stay in the caller's RaySoA).
+struct GridScratch {
+  std::vector<Ray> rays;
+  std::vector<VoxelHit> hits;
+  std::vector<uint8_t> found;
+  void reserve(size_t count) {
+    if (rays.size() >= count) return;
+    rays.resize(count);
+    hits.resize(count);
+    found.resize(count);
   }
-  std::vector<VoxelHit> vh(count);
-  std::vector<uint8_t> found(count);
+};
+GridScratch& grid_scratch() {
+  thread_local GridScratch scratch;
+  return scratch;
+}
+}  // namespace
+
+void VoxelGridAccel::intersect_coherent(const RaySoA& set_rays, size_t count, uint32_t index, Hit* hits) const {
+  GridScratch& s = grid_scratch();
+  s.reserve(count);
+  Ray* rays = s.rays.data();
+  for (size_t i = 0; i < count; ++i) {
+    rays[i] = to_set.apply_inverse(ray_at(set_rays, i));
+    rays[i].t_max = std::max(0.0f, std::min(set_rays.t_max[i], hits[i].t));
+  }
   const CellHandler cells{*this};
-  voxel_intersect_packets(*tree, rays.data(), count, vh.data(), found.data(), kVoxelPacket,
-                          voxel_cell_callbacks(cells));
+  voxel_intersect_packets(*tree, rays, count, s.hits.data(), s.found.data(), kVoxelPacket, voxel_cell_callbacks(cells));
   for (size_t i = 0; i < count; ++i) {
     // As intersect(): rays with nothing left to search keep their hit.
-    if (found[i] && rays[i].t_max > 0 && vh[i].t < hits[i].t) encode_hit(vh[i], index, &hits[i]);
+    if (s.found[i] && rays[i].t_max > 0 && s.hits[i].t < hits[i].t) encode_hit(s.hits[i], index, &hits[i]);
   }
 }
 
-void VoxelGridAccel::occluded_coherent(const Ray* set_rays, size_t count, uint8_t* blocked) const {
-  std::vector<Ray> rays(count);
-  for (size_t i = 0; i < count; ++i) rays[i] = to_set.apply_inverse(set_rays[i]);
-  std::vector<uint8_t> hit(count);
+void VoxelGridAccel::occluded_coherent(const RaySoA& set_rays, size_t count, uint8_t* blocked) const {
+  GridScratch& s = grid_scratch();
+  s.reserve(count);
+  Ray* rays = s.rays.data();
+  for (size_t i = 0; i < count; ++i) {  // rays already blocked: nothing to search
+    rays[i] = to_set.apply_inverse(ray_at(set_rays, i));
+    if (blocked[i]) rays[i].t_max = 0;
+  }
   const CellHandler cells{*this};
-  voxel_occluded_packets(*tree, rays.data(), count, hit.data(), kVoxelPacket, voxel_cell_callbacks(cells));
-  for (size_t i = 0; i < count; ++i) blocked[i] = blocked[i] || hit[i];
+  voxel_occluded_packets(*tree, rays, count, s.found.data(), kVoxelPacket, voxel_cell_callbacks(cells));
+  for (size_t i = 0; i < count; ++i) blocked[i] = blocked[i] || s.found[i];
 }
 
 SurfaceHit VoxelGridAccel::surface(const Hit& hit, const Ray& ray) const {
@@ -124,7 +141,7 @@ SurfaceHit VoxelGridAccel::surface(const Hit& hit, const Ray& ray) const {
     VoxelHit vh;
     const VoxelCellGeometry* c = cell(id);
     if (c && voxel_intersect(*tree, again, &vh, CellHandler{*this}) && vh.face < 0) {
-      const SurfaceHit cs = c->set->surface(vh.cell);
+      const SurfaceHit cs = c->set.surface(vh.cell);
       s = cs;
       s.p = cs.p + Vec3f(float(vh.voxel[0]), float(vh.voxel[1]), float(vh.voxel[2]));
       s.material = cs.object < c->object_material.size() ? c->object_material[cs.object] : -1;

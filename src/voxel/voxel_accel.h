@@ -1,4 +1,4 @@
-// A voxel grid placed in a GeometrySet (scene/geometry_set.h): the shared kd-tree, the grid-to-set transform,
+// A voxel grid placed in a GeometrySet (accel/geometry_set.h): the shared kd-tree, the grid-to-set transform,
 // the material of each (id, face) and the unit-cell geometry of each negative id. Traced after the set's
 // triangles and quadrics with t_max clipped to their hit.
 //
@@ -15,15 +15,15 @@
 #include <memory>
 #include <vector>
 
+#include "accel/hit.h"
+#include "accel/shape_set.h"
 #include "core/transform.h"
 #include "geometry/mesh.h"
 #include "geometry/quadric.h"
+#include "geometry/surface_hit.h"
 #include "voxel/voxel_traverse.h"
 
 namespace torte {
-
-class GeometrySet;
-struct SurfaceHit;
 
 constexpr uint32_t kVoxelPrimBit = 1u << 31;
 constexpr uint32_t kVoxelCellBit = 1u << 30;
@@ -38,15 +38,14 @@ inline int voxel_prim_face(uint32_t prim) { return int(prim >> 16) & 7; }
 inline int16_t voxel_prim_id(uint32_t prim) { return int16_t(uint16_t(prim & 0xffff)); }
 inline bool voxel_prim_is_cell(uint32_t prim) { return (prim & kVoxelCellBit) != 0; }
 
-// The geometry of one negative id in unit-cell space, with the material override of each of its objects.
+// The geometry of one negative id in unit-cell space, with the material override of each of its objects. A
+// ShapeSet, not a GeometrySet: cells hold no grids, so voxel code depends on the shape level only (no cycle).
 struct VoxelCellGeometry {
   std::vector<TriangleMesh> meshes;
   std::vector<Quadric> quadrics;
-  std::unique_ptr<GeometrySet> set;
+  ShapeSet set;
   std::vector<int32_t> object_material;  // per object of `set`: index into Scene::material_overrides
-  VoxelCellGeometry();
-  ~VoxelCellGeometry();
-  void build();  // builds `set` once meshes and quadrics are final
+  void build() { set.build(meshes, quadrics); }  // once meshes and quadrics are final
 };
 
 struct VoxelGridAccel {
@@ -72,10 +71,11 @@ struct VoxelGridAccel {
   // grid's index in its set.
   bool intersect(const Ray& ray, uint32_t index, Hit* hit) const;
   bool occluded(const Ray& ray) const;
-  // The same for coherent rays (camera rays in tiles, shadow rays towards one point), traced in packets of 16
-  // (simd/voxel_packet.h): 2.5x faster than single rays for camera rays, slower for incoherent ones.
-  void intersect_coherent(const Ray* set_rays, size_t count, uint32_t index, Hit* hits) const;
-  void occluded_coherent(const Ray* set_rays, size_t count, uint8_t* blocked) const;
+  // The same for coherent set-space rays (camera rays in tiles, shadow rays towards one point), traced in packets
+  // of 16 (simd/voxel_packet.h): 2.5x faster than single rays for camera rays, slower for incoherent ones.
+  // occluded_coherent skips rays already blocked and sets blocked[i] for the others the grid blocks.
+  void intersect_coherent(const RaySoA& set_rays, size_t count, uint32_t index, Hit* hits) const;
+  void occluded_coherent(const RaySoA& set_rays, size_t count, uint8_t* blocked) const;
   // The surface of a hit of this grid, in the set's space; `ray` is the set-space ray that was traced.
   SurfaceHit surface(const Hit& hit, const Ray& ray) const;
   size_t bytes() const { return tree->nodes().size() * sizeof(VoxelNode); }

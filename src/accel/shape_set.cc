@@ -1,4 +1,4 @@
-#include "scene/geometry_set.h"
+#include "accel/shape_set.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -7,28 +7,16 @@
 #include <cmath>
 #include <cstring>
 
-#include "core/interrupt.h"
 #include "core/error.h"
-#include "traverse.h"
+#include "core/interrupt.h"
+#include "simd/traverse.h"
 
 namespace torte {
 
-namespace {
-const std::vector<VoxelGridAccel> kNoGrids;
-}  // namespace
-
-void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
-                        uint32_t object_base) {
-  build(meshes, quadrics, kNoGrids, object_base);
-}
-
-void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
-                        const std::vector<VoxelGridAccel>& grids, uint32_t object_base, ProgressCounter* progress) {
-  if (grids.size() > kMaxVoxelGridsPerSet) throw Error("more than 2048 voxel grids in one scene or group");
-  grids_ = &grids;
+void ShapeSet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
+                     ProgressCounter* progress) {
   meshes_ = &meshes;
   quadrics_ = &quadrics;
-  object_base_ = object_base;
   // The set's input numbering: mesh after mesh.
   std::vector<uint32_t> mesh_first;
   size_t input_triangles = 0;
@@ -36,7 +24,7 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
     mesh_first.push_back(uint32_t(input_triangles));
     input_triangles += mesh.triangle_count();
   }
-  if (input_triangles > kVoxelPrimBit) throw Error("more than 2^31 triangles in one scene or group");
+  if (input_triangles > (size_t(1) << 31)) throw Error("more than 2^31 triangles in one scene or group");
   // Triangles: bounds, the wide BVH, its leaf-order vertex copy (read straight from the meshes), then the meshes
   // rewritten in leaf order. The bounds are on huge pages faulted in by all threads (core/huge_pages.h): fewer
   // and parallel faults on big scenes.
@@ -69,7 +57,6 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
   for (size_t q = 0; q < quadrics.size(); ++q) quadric_bounds[q] = world_bounds(quadrics[q]);
   quadric_bvh_.build(quadric_bounds);
   bounds_ = merge(tri_bvh_.bounds, quadric_bvh_.bounds());
-  for (const VoxelGridAccel& g : grids) bounds_.extend(g.bounds());
 }
 
 // Rewrites every mesh's index triples in the order its triangles take in the leaves, then the set numbers its
@@ -83,8 +70,8 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
 // least 12 bytes per triangle, memory the build has already faulted in) and copied back over each mesh's own index
 // array: fresh arrays would cost a page fault per 4 KiB (1.5 s for 28 M triangles on this VM, more than the
 // reorder itself).
-void GeometrySet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first,
-                                      std::span<std::byte> scratch) {
+void ShapeSet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first,
+                                   std::span<std::byte> scratch) {
   const auto& order = tri_bvh_.prim_indices;  // leaf position -> input triangle
   const size_t n = order.size(), mesh_count = meshes.size();
   const size_t input_triangles = mesh_first.empty() ? 0 : mesh_first.back() + meshes.back().triangle_count();
@@ -153,7 +140,7 @@ struct SingleRay {
 
 }  // namespace
 
-bool GeometrySet::intersect_one(const Ray& ray, Hit* hit) const {
+bool ShapeSet::intersect_one(const Ray& ray, Hit* hit) const {
   Ray r = ray;
   r.t_max = std::min(ray.t_max, hit->t);
   if (!(r.t_max > 0) || empty()) return false;
@@ -166,7 +153,7 @@ bool GeometrySet::intersect_one(const Ray& ray, Hit* hit) const {
   return true;
 }
 
-bool GeometrySet::occluded_one(const Ray& ray) const {
+bool ShapeSet::occluded_one(const Ray& ray) const {
   if (empty()) return false;
   const SingleRay one(ray);
   uint8_t blocked = 0;
@@ -174,7 +161,7 @@ bool GeometrySet::occluded_one(const Ray& ray) const {
   return blocked != 0;
 }
 
-void GeometrySet::intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
+void ShapeSet::intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
   if (triangle_count() > 0) {
     if (coherent) {
       intersect_closest_packets(tri_bvh_, tri_leaves_, rays, count, hits, 8);
@@ -184,26 +171,10 @@ void GeometrySet::intersect(const RaySoA& rays, size_t count, Hit* hits, bool co
   } else {
     std::fill(hits, hits + count, Hit{});
   }
-  if (!quadrics_->empty()) intersect_quadrics(rays, count, hits);
-  if (grid_count() > 0) intersect_grids(rays, count, hits, coherent);
+  if (quadric_count() > 0) intersect_quadrics(rays, count, hits);
 }
 
-// Voxel grids after the triangles and quadrics, with t_max clipped to their hit: coherent rays in packets
-// (simd/voxel_packet.h), others one at a time (voxel/voxel_traverse.h).
-void GeometrySet::intersect_grids(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
-  if (coherent && count >= 16) {  // packets of 16 (camera rays come in tiles)
-    std::vector<Ray> aos(count);
-    for (size_t i = 0; i < count; ++i) aos[i] = ray_at(rays, i);
-    for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].intersect_coherent(aos.data(), count, g, hits);
-    return;
-  }
-  for (size_t i = 0; i < count; ++i) {
-    const Ray r = ray_at(rays, i);
-    for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].intersect(r, g, &hits[i]);
-  }
-}
-
-void GeometrySet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const {
+void ShapeSet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const {
   const uint32_t ntri = triangle_count();
   for (size_t i = 0; i < count; ++i) {
     Ray r = ray_at(rays, i, std::min(rays.t_max[i], hits[i].t));
@@ -219,7 +190,7 @@ void GeometrySet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits
   }
 }
 
-void GeometrySet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const {
+void ShapeSet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const {
   if (triangle_count() > 0) {
     if (coherent) {
       intersect_any_packets(tri_bvh_, tri_leaves_, rays, count, blocked, 8);
@@ -229,109 +200,37 @@ void GeometrySet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, b
   } else {
     std::fill(blocked, blocked + count, uint8_t(0));
   }
-  if (quadrics_->empty() && grid_count() == 0) return;
-  const bool grid_packets = coherent && count >= 16 && grid_count() > 0;
+  if (quadric_count() == 0) return;
   for (size_t i = 0; i < count; ++i) {
     if (blocked[i]) continue;
-    const Ray r = ray_at(rays, i);
-    if (!quadrics_->empty())
-      blocked[i] = quadric_bvh_.occluded(r, [&](uint32_t q, const Ray& ray) {
-        float t;
-        Vec2f uv;
-        return torte::intersect((*quadrics_)[q], ray, &t, &uv);
-      });
-    if (!grid_packets)
-      for (uint32_t g = 0; g < grid_count() && !blocked[i]; ++g) blocked[i] = (*grids_)[g].occluded(r);
-  }
-  if (grid_packets) {
-    std::vector<Ray> aos(count);
-    for (size_t i = 0; i < count; ++i)  // rays already blocked: nothing to search
-      aos[i] = ray_at(rays, i, blocked[i] ? 0.0f : rays.t_max[i]);
-    for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].occluded_coherent(aos.data(), count, blocked);
+    blocked[i] = quadric_bvh_.occluded(ray_at(rays, i), [&](uint32_t q, const Ray& ray) {
+      float t;
+      Vec2f uv;
+      return torte::intersect((*quadrics_)[q], ray, &t, &uv);
+    });
   }
 }
 
-size_t GeometrySet::accel_bytes() const {
-  size_t grid_bytes = 0;
-  for (uint32_t g = 0; g < grid_count(); ++g) grid_bytes += (*grids_)[g].bytes();
+size_t ShapeSet::accel_bytes() const {
   return tri_bvh_.memory_bytes() + tri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
          quadric_bvh_.prim_indices().size() * sizeof(uint32_t) +
-         (tri_ref_ ? triangle_count_ * sizeof(uint32_t) + mesh_first_.size() * sizeof(uint32_t) : 0) + grid_bytes;
+         (tri_ref_ ? triangle_count_ * sizeof(uint32_t) + mesh_first_.size() * sizeof(uint32_t) : 0);
 }
 
-SurfaceHit GeometrySet::surface(const Hit& hit, const Ray* ray) const {
-  if (is_voxel_prim(hit.prim)) {
-    if (!ray) throw Error("internal: the surface of a voxel hit needs its ray");
-    SurfaceHit s = (*grids_)[voxel_prim_grid(hit.prim)].surface(hit, *ray);
-    s.object = object_of(hit.prim);
-    return s;
-  }
+SurfaceHit ShapeSet::surface(const Hit& hit) const {
   SurfaceHit s;
-  s.object = object_of(hit.prim);
-  const std::vector<TriangleMesh>& meshes = *meshes_;
-  const std::vector<Quadric>& quadrics = *quadrics_;
   if (hit.prim < triangle_count()) {
     // Positions from the leaves (the meshes may have released theirs, scene/scene.h); normals and uvs from the
     // mesh, whose triangles are in leaf order.
     const TriangleRef ref = triangle_ref(hit.prim);
-    const TriangleMesh& mesh = meshes[ref.mesh];
-    const uint32_t* idx = &mesh.indices[3 * size_t(ref.local)];
+    const TriangleMesh& mesh = (*meshes_)[ref.mesh];
     Vec3f p[3];
     tri_leaves_.triangle(hit.prim, p);
-    const Vec3f p0 = p[0], p1 = p[1], p2 = p[2];
-    const float b0 = 1 - hit.b1 - hit.b2;
-    // Interpolating the vertices is more accurate than o + t d far from the origin.
-    s.p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
-    s.ng = normalize(cross(p1 - p0, p2 - p0));
-    s.ns = s.ng;
-    if (mesh.has_normals()) {
-      const Vec3f n = mesh.normal(idx[0]) * b0 + mesh.normal(idx[1]) * hit.b1 + mesh.normal(idx[2]) * hit.b2;
-      if (length_squared(n) > 0) {
-        s.ns = normalize(n);
-        // Vertex normals state which side is the front: the geometric normal follows them (as in pbrt).
-        s.ng = face_forward(s.ng, s.ns);
-      }
-    }
-    // Vertex uvs: the mesh's, or a fixed parameterization (0,0), (1,0), (1,1) of every triangle.
-    Vec2f t0(0, 0), t1(1, 0), t2(1, 1);
-    if (mesh.has_uvs()) {
-      t0 = Vec2f(mesh.u[idx[0]], mesh.v[idx[0]]);
-      t1 = Vec2f(mesh.u[idx[1]], mesh.v[idx[1]]);
-      t2 = Vec2f(mesh.u[idx[2]], mesh.v[idx[2]]);
-    }
-    s.uv = t0 * b0 + t1 * hit.b1 + t2 * hit.b2;
-    // dp/du and dp/dv from the triangle's edges in position and uv (pbrt's construction).
-    const Vec2f duv02 = t0 - t2, duv12 = t1 - t2;
-    const Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
-    const float det = duv02.x * duv12.y - duv02.y * duv12.x;
-    if (std::fabs(det) > 1e-12f) {
-      s.dpdu = (dp02 * duv12.y - dp12 * duv02.y) / det;
-      s.dpdv = (dp12 * duv02.x - dp02 * duv12.x) / det;
-    }
-    if (!(length_squared(cross(s.dpdu, s.dpdv)) > 0)) {  // degenerate uvs: any tangent frame
-      const Frame f = Frame::from_z(s.ng);
-      s.dpdu = f.s;
-      s.dpdv = f.t;
-    }
-    return s;
+    s = triangle_surface(mesh, &mesh.indices[3 * size_t(ref.local)], p, hit.b1, hit.b2);
+  } else {
+    s = quadric_surface((*quadrics_)[hit.prim - triangle_count()], Vec2f(hit.b1, hit.b2));
   }
-  const Quadric& q = quadrics[hit.prim - triangle_count()];
-  const Vec2f uv(hit.b1, hit.b2);
-  const SurfacePoint sp = surface_at(q, uv);
-  s.p = sp.p;
-  s.ng = s.ns = sp.n;
-  s.uv = sp.uv;
-  // Tangents by central differences of the parameterization (quadrics are few; this is off the hot path of
-  // triangle scenes). Poles and other degenerate points fall back to any frame around the normal.
-  constexpr float h = 1e-3f;
-  auto at = [&](float u, float v) { return surface_at(q, Vec2f(std::clamp(u, 0.0f, 1.0f), std::clamp(v, 0.0f, 1.0f))).p; };
-  s.dpdu = (at(uv.x + h, uv.y) - at(uv.x - h, uv.y)) / (2 * h);
-  s.dpdv = (at(uv.x, uv.y + h) - at(uv.x, uv.y - h)) / (2 * h);
-  if (!(length_squared(cross(s.dpdu, s.dpdv)) > 1e-12f * length_squared(sp.p) + 1e-20f)) {
-    const Frame f = Frame::from_z(s.ng);
-    s.dpdu = f.s;
-    s.dpdv = f.t;
-  }
+  s.object = local_object_of(hit.prim);
   return s;
 }
 
