@@ -30,19 +30,12 @@ struct RawVpl {
   MaterialRef material;
 };
 
-// Calls fn(std::integral_constant<int, T>, bsdf) with the BSDF of leaf material m (type T) at tc: one switch.
-template <class Fn, size_t... T>
-void with_bsdf_impl(const Scene& scene, MaterialRef m, const TextureContext& tc, TransportMode mode, Fn& fn,
-                    std::index_sequence<T...>) {
-  (void)((m.type == MaterialType(T) &&
-          (fn(std::integral_constant<int, int(T)>{},
-              MaterialTraits<MaterialType(T)>::bsdf(scene, m.index, tc, mode)),
-           true)) ||
-         ...);
-}
+// Calls fn(MaterialTypeTag<T>, bsdf) with the BSDF of leaf material m (type T) at tc: one dispatch.
 template <class Fn>
 void with_bsdf(const Scene& scene, MaterialRef m, const TextureContext& tc, TransportMode mode, Fn&& fn) {
-  with_bsdf_impl(scene, m, tc, mode, fn, std::make_index_sequence<kShadedMaterialTypeCount>{});
+  dispatch_shaded(m.type, [&](auto t) {
+    fn(t, MaterialTraits<t()>::bsdf(scene.materials, scene.textures, m.index, tc, mode));
+  });
 }
 
 // Traces light path `j` of set `set`, appending its VPLs to `out`; returns the number of rays traced.
@@ -151,7 +144,7 @@ VplStore generate_vpls(const Scene& scene, const RenderSettings& settings) {
       store.material.push_back(v.material);
       // The same texture context as at generation: the same BSDF.
       with_bsdf(scene, v.material, texture_context(v.s, 0), TransportMode::Importance, [&](auto t, const auto& b) {
-        auto& array = std::get<decltype(t)::value>(store.bsdfs);
+        auto& array = std::get<int(t())>(store.bsdfs);
         store.bsdf.push_back(uint32_t(array.size()));
         array.push_back(b);
       });

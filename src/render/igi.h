@@ -55,10 +55,9 @@ struct VplStore {
   std::vector<uint32_t> bsdf;         // index into the BSDF array of material[v].type
   std::vector<uint32_t> set_begin;    // vpl_sets + 1 offsets
   // The VPLs' BSDFs, built once (texture lookups at generation), one array per shaded material type.
-  template <size_t... T>
-  static auto make_bsdf_arrays(std::index_sequence<T...>)
-      -> std::tuple<std::vector<typename MaterialTraits<MaterialType(T)>::Bsdf>...>;
-  decltype(make_bsdf_arrays(std::make_index_sequence<kShadedMaterialTypeCount>{})) bsdfs;
+  template <MaterialType T>
+  using BsdfArray = std::vector<typename MaterialTraits<T>::Bsdf>;
+  PerShadedType<BsdfArray> bsdfs;
   float g_max = kInfinity;  // absolute clamp of the geometry term
   uint64_t light_rays = 0;  // rays traced to build the VPLs
 
@@ -69,24 +68,13 @@ struct VplStore {
     return uint32_t((mix_bits(uint64_t(pixel) ^ (seed << 32)) + sample) % uint64_t(set_count()));
   }
   // f of VPL v for light leaving towards w (world, unit), in importance mode: f_v(wo_v, w). 0 when w is on the
-  // wrong side of the surface for the normals. One switch on the material type, no virtual call.
+  // wrong side of the surface for the normals. One dispatch on the material type, no virtual call.
   Rgb eval(uint32_t v, Vec3f w) const {
     const Vec3f wl = frame[v].to_local(w);
     if (!consistent_sides(ng[v], wo[v], w, wo_local[v], wl)) return {};
-    const uint32_t b = bsdf[v];
-    const Vec3f wol = wo_local[v];
-    switch (material[v].type) {
-      case MaterialType::Lambert: return std::get<int(MaterialType::Lambert)>(bsdfs)[b].eval(wol, wl);
-      case MaterialType::OrenNayar: return std::get<int(MaterialType::OrenNayar)>(bsdfs)[b].eval(wol, wl);
-      case MaterialType::Mirror: return std::get<int(MaterialType::Mirror)>(bsdfs)[b].eval(wol, wl);
-      case MaterialType::Conductor: return std::get<int(MaterialType::Conductor)>(bsdfs)[b].eval(wol, wl);
-      case MaterialType::Dielectric: return std::get<int(MaterialType::Dielectric)>(bsdfs)[b].eval(wol, wl);
-      case MaterialType::ThinDielectric:
-        return std::get<int(MaterialType::ThinDielectric)>(bsdfs)[b].eval(wol, wl);
-      case MaterialType::CoatedDiffuse:
-        return std::get<int(MaterialType::CoatedDiffuse)>(bsdfs)[b].eval(wol, wl);
-      default: return {};
-    }
+    Rgb f;
+    dispatch_shaded(material[v].type, [&](auto t) { f = std::get<int(t())>(bsdfs)[bsdf[v]].eval(wo_local[v], wl); });
+    return f;
   }
 };
 

@@ -12,7 +12,8 @@
 #include <vector>
 
 #include "core/sampler.h"
-#include "render/material_kernels.h"
+#include "material/material_traits.h"
+#include "render/shade_eval_batch.h"
 #include "render/material_resolve.h"
 #include "render/path_state.h"
 #include "render/render.h"
@@ -131,17 +132,14 @@ inline void continue_path(const ShadeContext& ctx, uint32_t i, const Frame& fram
 
 namespace detail {
 
-template <class Traits>
-concept HasEvalBatch = requires { &Traits::eval_batch; };
-
 // Phase 2: f and pdf for every light candidate.
 template <MaterialType T, class Bsdf>
 void eval_candidates(ShadeScratch<Bsdf>& sc) {
   const size_t n = sc.lights.size();
   sc.f.resize(n);
   sc.pdf.resize(n);
-  if constexpr (HasEvalBatch<MaterialTraits<T>>) {
-    MaterialTraits<T>::eval_batch(sc);
+  if constexpr (MaterialTraits<T>::kBatchEval) {
+    eval_batch_simd(sc);
   } else {
     for (size_t k = 0; k < n; ++k) {
       const LightCandidate& c = sc.lights[k];
@@ -169,7 +167,6 @@ template <MaterialType T>
 void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
                  ShadeScratch<typename MaterialTraits<T>::Bsdf>& sc) {
   using Traits = MaterialTraits<T>;
-  using Bsdf = typename Traits::Bsdf;
   const Scene& scene = ctx.scene;
   PathState& ps = ctx.paths;
   const size_t n = queue.size();
@@ -183,7 +180,7 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
     const uint32_t i = queue[k];
     const SurfaceHit& s = ps.surface[i];
     const TextureContext tc = texture_context(s, ps.footprint[i]);
-    sc.bsdf.push_back(Traits::bsdf(scene, ps.material[i].index, tc, TransportMode::Radiance));
+    sc.bsdf.push_back(Traits::bsdf(scene.materials, scene.textures, ps.material[i].index, tc, TransportMode::Radiance));
     sc.frame[k] = Frame::from_z(s.ns);
     const Vec3f wo = -ps.dir[i];
     sc.wo_local[k] = sc.frame[k].to_local(wo);
@@ -233,8 +230,7 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
     const uint32_t px = ps.pixel[i], si = ps.sample[i];
     BsdfSample bs;
     // Single-lobe models ignore the lobe sample: do not pay for a sampler dimension they do not read.
-    constexpr bool kSingleLobe = std::is_same_v<Bsdf, LambertBsdf> || std::is_same_v<Bsdf, OrenNayarBsdf>;
-    const float uc = kSingleLobe ? 0.5f : ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe));
+    const float uc = Traits::kSingleLobe ? 0.5f : ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe));
     if (!sc.bsdf[k].sample(sc.wo_local[k], uc, ctx.sampler.get_2d(px, si, bounce_dim(depth, kDimBsdf)), &bs) ||
         !(bs.pdf > 0)) {
       ps.depth[i] = kPathEnded;

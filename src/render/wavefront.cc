@@ -190,10 +190,10 @@ void WavefrontRenderer::shade() {
                                      queue_begin_[int(t) + 1] - queue_begin_[int(t)]);
   };
   // One kernel per shaded material type, each over its contiguous queue.
-  [&]<size_t... T>(std::index_sequence<T...>) {
-    ((shade_queue<MaterialType(T)>(ctx, queue(MaterialType(T)), std::get<T>(scratch_)),
-      vpl_hits_end_[T] = vpl_hits_.size()), ...);
-  }(std::make_index_sequence<kShadedMaterialTypeCount>{});
+  for_each_shaded_type([&](auto t) {
+    shade_queue<t()>(ctx, queue(t()), std::get<int(t())>(scratch_));
+    vpl_hits_end_[int(t())] = vpl_hits_.size();
+  });
 }
 
 void WavefrontRenderer::gather_vpls(RenderStats& stats) {
@@ -206,11 +206,10 @@ void WavefrontRenderer::gather_vpls(RenderStats& stats) {
     const size_t begin = t == 0 ? 0 : vpl_hits_end_[t - 1];
     return std::span<const VplHit>(vpl_hits_.data() + begin, vpl_hits_end_[t] - begin);
   };
-  [&]<size_t... T>(std::index_sequence<T...>) {
-    (torte::gather_vpls<MaterialType(T)>(*vpls_, std::get<T>(scratch_), hits(T), paths_, settings_.seed, shadows_,
-                                         vpl_order_, flush),
-     ...);
-  }(std::make_index_sequence<kShadedMaterialTypeCount>{});
+  for_each_shaded_type([&](auto t) {
+    torte::gather_vpls<t()>(*vpls_, std::get<int(t())>(scratch_), hits(int(t())), paths_, settings_.seed, shadows_,
+                            vpl_order_, flush);
+  });
   flush();
 }
 

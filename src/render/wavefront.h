@@ -67,10 +67,9 @@ class WavefrontRenderer {
   std::vector<uint32_t> material_queue_;           // active hits sorted by material type
   uint32_t queue_begin_[kMaterialTypeCount + 1] = {};
   // Shading scratch, one per shaded material type (index = MaterialType).
-  template <size_t... T>
-  static auto make_scratch(std::index_sequence<T...>)
-      -> std::tuple<ShadeScratch<typename MaterialTraits<MaterialType(T)>::Bsdf>...>;
-  decltype(make_scratch(std::make_index_sequence<kShadedMaterialTypeCount>{})) scratch_;
+  template <MaterialType T>
+  using Scratch = ShadeScratch<typename MaterialTraits<T>::Bsdf>;
+  PerShadedType<Scratch> scratch_;
 };
 
 }  // namespace torte
