@@ -82,7 +82,7 @@ RenderOutput render(const Scene& scene, const RenderSettings& settings, Progress
   const Camera camera(scene.camera, settings.width, settings.height);
   const Sampler sampler(settings.seed);
   const std::vector<Tile> tiles = make_tiles(settings.width, settings.height, settings.tile_size);
-  std::vector<PixelSum> film(size_t(settings.width) * settings.height);
+  Film film(settings.width, settings.height);
   // IGI's preprocess: the virtual point lights, shared read-only by every tile.
   const VplStore vpls = settings.integrator == IntegratorKind::Igi ? generate_vpls(scene, settings) : VplStore{};
   const VplStore* vpl_ptr = settings.integrator == IntegratorKind::Igi ? &vpls : nullptr;
@@ -135,9 +135,7 @@ RenderOutput render(const Scene& scene, const RenderSettings& settings, Progress
     out.stats.samples_done += w.stats.samples_done;
   }
   out.stats.interrupted = cancelled() && out.stats.samples_done < samples_total;
-  out.image = Image(settings.width, settings.height);
-  for (size_t i = 0; i < film.size(); ++i)
-    out.image.pixels[i] = film[i].weight != 0 ? film[i].weighted / film[i].weight : Rgb(0);
+  out.image = film.image();
   out.stats.render_seconds = elapsed();
   return out;
 }

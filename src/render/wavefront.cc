@@ -15,7 +15,7 @@ namespace {
 constexpr uint32_t kDimLens = 1u << 30;
 }  // namespace
 
-void WavefrontRenderer::render(const std::vector<SampleRequest>& requests, std::vector<PixelSum>& film,
+void WavefrontRenderer::render(const std::vector<SampleRequest>& requests, Film& film,
                                RenderStats& stats) {
   // `direct` is the same pipeline, stopped after the first non-specular scattering event (it follows specular
   // chains: mirrors and glass show the lit scene); its light-sampling strategy is chosen in the settings.
@@ -38,9 +38,7 @@ void WavefrontRenderer::render(const std::vector<SampleRequest>& requests, std::
       ++stats.dropped_samples;
       continue;
     }
-    PixelSum& px = film[paths_.pixel[i]];
-    px.weighted += L * paths_.filter_weight[i];
-    px.weight += paths_.filter_weight[i];
+    film.add_sample(paths_.pixel[i], L, paths_.filter_weight[i]);
   }
 }
 

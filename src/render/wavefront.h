@@ -8,6 +8,7 @@
 
 #include "camera/camera.h"
 #include "core/sampler.h"
+#include "film/film.h"
 #include "render/path_state.h"
 #include "render/render.h"
 #include "render/shade.h"
@@ -21,12 +22,6 @@ struct SampleRequest {
   uint32_t sample;  // index within the pixel
 };
 
-// Accumulated film values of one pixel: sum of weight * L and sum of weights.
-struct PixelSum {
-  Rgb weighted;
-  float weight = 0;
-};
-
 class WavefrontRenderer {
  public:
   // `vpls` (IntegratorKind::Igi only, else null): the virtual point lights camera hits gather from.
@@ -34,7 +29,7 @@ class WavefrontRenderer {
                     const VplStore* vpls = nullptr)
       : scene_(scene), camera_(camera), settings_(settings), sampler_(sampler), vpls_(vpls) {}
   // Renders the requested samples and adds them to film (indexed by pixel). Counts rays and dropped samples.
-  void render(const std::vector<SampleRequest>& requests, std::vector<PixelSum>& film, RenderStats& stats);
+  void render(const std::vector<SampleRequest>& requests, Film& film, RenderStats& stats);
 
  private:
   void generate_camera_rays(const std::vector<SampleRequest>& requests);
