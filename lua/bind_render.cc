@@ -291,7 +291,7 @@ int l_render(lua_State* L) {
   auto img = std::make_shared<RenderedImage>();
   RenderOutput out;
   try {
-    out = render(*flat, s, ctx.quiet ? nullptr : &progress, ctx.cancel);
+    out = render(*flat, Camera(flat->camera, s.width, s.height), s, ctx.quiet ? nullptr : &progress, ctx.cancel);
   } catch (...) {
     progress.finish();
     throw;

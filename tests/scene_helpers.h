@@ -6,8 +6,20 @@
 #include <cstring>
 #include <memory>
 
+#include "core/error.h"
 #include "render/render.h"
 #include "scene/builder.h"
+
+namespace torte {
+
+// The tests' scenes carry their camera (SceneBuilder::set_camera): render it at the settings' size.
+inline RenderOutput render(const Scene& scene, const RenderSettings& s, ProgressSink* progress = nullptr,
+                           const std::atomic<bool>* cancel = nullptr) {
+  if (!scene.has_camera) throw Error("the scene has no camera");
+  return render(scene, Camera(scene.camera, s.width, s.height), s, progress, cancel);
+}
+
+}  // namespace torte
 
 namespace torte::test {
 

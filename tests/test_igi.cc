@@ -1,4 +1,4 @@
-// Instant global illumination (render/igi.h) against path tracing on a small closed diffuse Cornell-like box:
+// Instant global illumination (render/integrator_igi.h) against path tracing on a small closed diffuse Cornell-like box:
 // convergence with a loose clamp and many VPLs, the clamping bias shrinking as g_limit grows, direct <= igi <=
 // path, and determinism across thread counts. Images are compared by tile means (8x8-pixel tiles).
 #include <tbb/global_control.h>

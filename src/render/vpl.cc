@@ -1,4 +1,4 @@
-#include "render/igi.h"
+#include "render/vpl.h"
 
 #include <tbb/parallel_for.h>
 
@@ -12,9 +12,9 @@ namespace torte {
 
 namespace {
 
-// Light paths draw from the same stateless sampler as camera paths, under "pixel" indices no image reaches
-// (images have fewer than 2^28 pixels): set s is pixel kVplPixelBase + s, path j its sample j, so the paths of a
-// set are stratified (Sobol) in their first dimensions.
+// Light paths draw from a stateless sampler of their family (seeded from the render's seed and the family),
+// under "pixel" indices no image reaches (images have fewer than 2^28 pixels): set s is pixel
+// kVplPixelBase + s, path j its sample j, so the paths of a set are stratified (Sobol) in their first dimensions.
 constexpr uint32_t kVplPixelBase = 0xf0000000u;
 enum LightPathDim : uint32_t { kDimLpLight = 0, kDimLpPosition = 1, kDimLpDirection = 2, kDimLpFirstBounce = 3 };
 enum LightBounceDim : uint32_t { kDimLpMix = 0, kDimLpLobe = 1, kDimLpBsdf = 2, kDimLpRoulette = 3, kDimsLpBounce = 4 };
@@ -109,21 +109,28 @@ uint64_t trace_light_path(const Scene& scene, const RenderSettings& settings, co
 
 }  // namespace
 
-VplStore generate_vpls(const Scene& scene, const RenderSettings& settings) {
+VplStore generate_vpls(const Scene& scene, const RenderSettings& settings, uint32_t first_family, int families) {
   VplStore store;
-  const int sets = settings.vpl_sets;
+  store.sets = settings.vpl_sets;
+  store.first_family = first_family;
+  const int sets = settings.vpl_sets * families;  // all sets of all families, family-major
   const float r = scene.radius();
   store.g_max = r > 0 ? settings.g_limit / (r * r) : kInfinity;
   store.set_begin.assign(size_t(sets) + 1, 0);
   if (scene.lights.empty() || settings.max_depth < 2) return store;
 
-  // Sets are independent: trace them in parallel into their own arrays, then concatenate in set order.
-  const Sampler sampler(settings.seed);
+  // Sets are independent: trace them in parallel into their own arrays, then concatenate in set order. Each
+  // family has its own sampler seed, so families are independent draws.
+  std::vector<Sampler> samplers;
+  for (int f = 0; f < families; ++f)
+    samplers.emplace_back(mix_bits(settings.seed ^ (uint64_t(first_family + uint32_t(f)) + 1) * 0x9e3779b97f4a7c15ull));
   std::vector<std::vector<RawVpl>> raw(static_cast<size_t>(sets));
   std::vector<uint64_t> rays(static_cast<size_t>(sets), 0);
   tbb::parallel_for(0, sets, [&](int set) {
+    const Sampler& sampler = samplers[size_t(set / settings.vpl_sets)];
     for (uint32_t j = 0; j < uint32_t(settings.light_paths); ++j)
-      rays[size_t(set)] += trace_light_path(scene, settings, sampler, set, j, raw[size_t(set)]);
+      rays[size_t(set)] +=
+          trace_light_path(scene, settings, sampler, set % settings.vpl_sets, j, raw[size_t(set)]);
   });
 
   size_t total = 0;

@@ -1,49 +1,25 @@
-// Instant global illumination (Keller 1997; the seed's "igi" renderer), IntegratorKind::Igi.
+// Virtual point lights for IGI (render/integrator_igi.h): light paths traced from the lights leave a VPL at
+// every non-specular hit; camera hits then gather from the VPLs of one set, one shadow ray per VPL.
 //
-// Preprocess (generate_vpls, once per render): `vpl_sets` independent sets of `light_paths` light paths each. A
-// path leaves a light chosen by power (light/light_emission.h) and, at every surface hit whose BSDF has a
-// non-specular part, stores a virtual point light (VPL): the hit point, its normals, its resolved material with
-// the BSDF built in TransportMode::Importance, the direction wo the light arrived from, and the flux the path
-// carries divided by light_paths. The path then continues by BSDF sampling; specular-only surfaces pass the
-// light on without storing a VPL (caustics reach the next diffuse hit). Russian roulette ends weak paths
-// (RenderSettings::vpl_roulette). Light paths never store a VPL on the light itself, so the VPLs carry light
-// that has bounced at least once: their estimate is INDIRECT light only, and direct light stays with the
-// camera side's next-event estimation (exactly as `direct`: MIS between light and BSDF sampling, one or all
-// lights). Nothing is counted twice.
-//
-// Rendering: camera paths run as `direct` (following specular chains; ends_after_first_scatter). Every hit
-// shaded with a non-specular BSDF also gathers from the VPLs of one set, chosen per pixel sample by interleaved
-// sampling ((hash(pixel) + sample) mod vpl_sets): for VPL y seen from x in direction wi,
-//   beta * f_x(wo, wi) * min(G, G_max) * f_y(wo_y, -wi) * power_y,   G = |cos_x| |cos_y| / |x - y|^2,
-// queued as a shadow ray (ShadowQueue) and traced in batches. G_max = g_limit / R^2 (R: the scene's bounding
-// radius). The clamp removes the bright spots VPLs make next to the surfaces they lie on, and with them the
-// energy of short-range inter-reflections (corners get darker): the bias, which goes to zero as g_limit grows.
-// A VPL at light-path bounce d adds paths of d + 1 scattering events: VPLs are stored for d <= max_depth - 1.
-// Missing, as in `direct`: light reaching the first non-specular camera hit through specular surfaces only
-// (L S+ D E caustics: no VPL lies on a light). Caustics that bounce once more (L S+ D D E) are in, through the
-// VPLs light paths leave behind specular chains. Unclamped (huge g_limit), VPL estimates are heavy-tailed: with
-// few light paths the image mean is usually a little low (scenes/lights.lua, light=spot: -1.4 % with 8 x 256
-// light paths, -0.3 % with 32 x 1024).
-//
-// Measured on scenes/cornell-box.lua, 256x256, against path at 1024 spp (errors on images clamped to 1; 2 cores
-// shared with other builds, so times are rough; rays are exact):
-//   direct 16 spp   0.9 s   2.7 M rays  RMSE 0.041  (no indirect light: mean abs error 0.028)
-//   path   16 spp   2.4 s   4.9 M rays  RMSE 0.015     path 64 spp   9.4 s  19.5 M rays  RMSE 0.0067
-//   igi     4 spp   7.2 s  31.1 M rays  RMSE 0.013     igi 16 spp   23.9 s 124.4 M rays  RMSE 0.0067
-//   igi 16 spp, light_paths=16: 8.4 s, 35.4 M rays, RMSE 0.0095; g_limit 2 / 200 at 16 spp: RMSE 0.011 / 0.0078.
-// igi's error is smooth (no pixel noise) but at equal time path tracing is as accurate or better here: each
-// camera hit pays one shadow ray per VPL of its set (~120 with the defaults).
+// VPLs come in families, one per camera sample index: the camera sample (pixel, s) gathers from one of the
+// vpl_sets sets of family s, chosen by interleaving ((hash(pixel) + s) mod vpl_sets), so neighbouring pixels
+// use different sets and every sample of a pixel uses VPLs drawn independently of its other samples. The
+// estimate is then consistent in the sample count: the VPL error falls as 1/sqrt(spp) like the rest, towards
+// the clamped solution. A progressive pass generates the families of the sample indices it renders.
 #pragma once
 #include <span>
 #include <tuple>
 #include <utility>
 #include <vector>
 
+#include "core/rng.h"
+#include "render/render_settings.h"
 #include "render/shade.h"
 
 namespace torte {
 
-// The VPLs of all sets, structure of arrays; set s is [set_begin[s], set_begin[s + 1]).
+// The VPLs of the families of a pass, structure of arrays; set s of family f (relative to first_family) is
+// [set_begin[f * sets + s], set_begin[f * sets + s + 1]).
 struct VplStore {
   std::vector<Vec3f> p, ng, ns;       // position, geometric and shading normal
   std::vector<Vec3f> wo;              // unit, towards where the light came from (world)
@@ -53,7 +29,9 @@ struct VplStore {
   std::vector<Rgb> power;             // flux / light_paths, with the shading-normal correction for wo folded in
   std::vector<MaterialRef> material;  // resolved leaf material (Mix and Bump resolved at generation)
   std::vector<uint32_t> bsdf;         // index into the BSDF array of material[v].type
-  std::vector<uint32_t> set_begin;    // vpl_sets + 1 offsets
+  std::vector<uint32_t> set_begin;    // families * sets + 1 offsets
+  int sets = 1;                       // sets per family
+  uint32_t first_family = 0;          // the sample index of family 0
   // The VPLs' BSDFs, built once (texture lookups at generation), one array per shaded material type.
   template <MaterialType T>
   using BsdfArray = std::vector<typename MaterialTraits<T>::Bsdf>;
@@ -63,9 +41,11 @@ struct VplStore {
 
   size_t size() const { return p.size(); }
   int set_count() const { return int(set_begin.size()) - 1; }
-  // The set a camera sample gathers from: interleaved, so each pixel cycles through all sets.
+  // The set a camera sample gathers from (an index into set_begin): in its sample's family, interleaved over
+  // pixels so that neighbours use different sets.
   uint32_t set_of(uint32_t pixel, uint32_t sample, uint64_t seed) const {
-    return uint32_t((mix_bits(uint64_t(pixel) ^ (seed << 32)) + sample) % uint64_t(set_count()));
+    const uint32_t in_family = uint32_t((mix_bits(uint64_t(pixel) ^ (seed << 32)) + sample) % uint64_t(sets));
+    return (sample - first_family) * uint32_t(sets) + in_family;
   }
   // f of VPL v for light leaving towards w (world, unit), in importance mode: f_v(wo_v, w). 0 when w is on the
   // wrong side of the surface for the normals. One dispatch on the material type, no virtual call.
@@ -78,24 +58,32 @@ struct VplStore {
   }
 };
 
-// Traces the light paths and builds the VPLs (TBB over sets; deterministic for a seed, any thread count).
-VplStore generate_vpls(const Scene& scene, const RenderSettings& settings);
+// Traces the light paths of the families of sample indices [first_family, first_family + families) and builds
+// their VPLs (TBB over sets; deterministic for a seed, any thread count).
+VplStore generate_vpls(const Scene& scene, const RenderSettings& settings, uint32_t first_family, int families);
 
-// Gathers VPL light at the hits of material type T recorded by shade_queue<T> (their BSDFs, frames and local
+// A camera hit that gathers from the VPLs: its slot in its type's shading queue (for the BSDF and frame left in
+// the type's ShadeScratch), its ray-queue slot (for the surface), its path and the throughput at the hit.
+struct VplHit {
+  uint32_t slot, ray, path;
+  Rgb beta;
+};
+
+// Gathers VPL light at the hits of material type T recorded after shade_queue<T> (their BSDFs, frames and local
 // wo are still in `sc`): one shadow ray per (hit, VPL of its set) into `shadows`, calling flush() whenever the
 // queue holds kVplShadowBatch rays or more, so memory stays bounded for any number of VPLs. Rays are queued VPL
 // by VPL over the hits that use its set (hits of a tile, towards one point): runs of coherent shadow rays,
-// which the caller traces as packets. `order` is scratch.
+// which the caller traces as packets. `order` and `begin` are scratch.
 constexpr size_t kVplShadowBatch = size_t(1) << 16;
 
 template <MaterialType T, class Flush>
 void gather_vpls(const VplStore& vpls, const ShadeScratch<typename MaterialTraits<T>::Bsdf>& sc,
-                 std::span<const VplHit> hits, const PathState& ps, uint64_t seed, ShadowQueue& shadows,
-                 std::vector<uint32_t>& order, Flush&& flush) {
+                 std::span<const VplHit> hits, const PathState& ps, const HitQueue& hq, uint64_t seed,
+                 ShadowQueue& shadows, std::vector<uint32_t>& order, std::vector<uint32_t>& begin, Flush&& flush) {
   if (vpls.size() == 0 || hits.empty()) return;
   // Counting sort of the hits by the set they gather from.
   const int sets = vpls.set_count();
-  std::vector<uint32_t> begin(size_t(sets) + 1, 0);
+  begin.assign(size_t(sets) + 1, 0);
   for (const VplHit& h : hits) ++begin[vpls.set_of(ps.pixel[h.path], ps.sample[h.path], seed) + 1];
   for (int s = 0; s < sets; ++s) begin[size_t(s) + 1] += begin[size_t(s)];
   order.resize(hits.size());
@@ -105,10 +93,11 @@ void gather_vpls(const VplStore& vpls, const ShadeScratch<typename MaterialTrait
       order[cursor[vpls.set_of(ps.pixel[hits[k].path], ps.sample[hits[k].path], seed)]++] = k;
   }
   for (int set = 0; set < sets; ++set) {
+    if (begin[size_t(set)] == begin[size_t(set) + 1]) continue;
     for (uint32_t v = vpls.set_begin[size_t(set)]; v < vpls.set_begin[size_t(set) + 1]; ++v) {
       for (uint32_t o_k = begin[size_t(set)]; o_k < begin[size_t(set) + 1]; ++o_k) {
         const VplHit& h = hits[order[o_k]];
-        const SurfaceHit& s = ps.surface[h.path];
+        const SurfaceHit& s = hq.surface[h.ray];
         const Frame& frame = sc.frame[h.slot];
         const Vec3f wo_local = sc.wo_local[h.slot];
         const Vec3f d = vpls.p[v] - s.p;
