@@ -48,7 +48,8 @@ struct MaterialTraits<MaterialType::Lambert> {
   using Bsdf = LambertBsdf;
   static auto& params(auto& tables) { return tables.lambert; }  // MaterialTables, const or not
   static constexpr bool kSingleLobe = true, kBatchEval = false;  // SIMD phase 2 does not pay for Lambert
-  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc, TransportMode) {
+  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc,
+                   TransportMode) {
     return {detail::clamp01(tex.eval(m.lambert[i].albedo, tc))};
   }
 };
@@ -57,7 +58,8 @@ template <>
 struct MaterialTraits<MaterialType::OrenNayar> {
   using Bsdf = OrenNayarBsdf;
   static auto& params(auto& tables) { return tables.oren_nayar; }  // MaterialTables, const or not
-  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc, TransportMode) {
+  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc,
+                   TransportMode) {
     const OrenNayarParams& p = m.oren_nayar[i];
     const float sigma_degrees = std::clamp(tex.eval(p.sigma, tc), 0.0f, 90.0f);
     return Bsdf{detail::clamp01(tex.eval(p.albedo, tc)), sigma_degrees * (kPi / 180)};
@@ -70,7 +72,8 @@ struct MaterialTraits<MaterialType::Mirror> {
   using Bsdf = MirrorBsdf;
   static auto& params(auto& tables) { return tables.mirror; }  // MaterialTables, const or not
   static constexpr bool kSingleLobe = false, kBatchEval = false;
-  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc, TransportMode) {
+  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc,
+                   TransportMode) {
     return Bsdf{detail::clamp01(tex.eval(m.mirror[i].tint, tc))};
   }
 };
@@ -79,7 +82,8 @@ template <>
 struct MaterialTraits<MaterialType::Conductor> {
   using Bsdf = ConductorBsdf;
   static auto& params(auto& tables) { return tables.conductor; }  // MaterialTables, const or not
-  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc, TransportMode) {
+  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc,
+                   TransportMode) {
     const ConductorParams& p = m.conductor[i];
     return Bsdf(detail::clamp0(tex.eval(p.eta, tc)), detail::clamp0(tex.eval(p.k, tc)),
                 detail::distribution(tex, p.roughness, tc));
@@ -93,7 +97,8 @@ struct MaterialTraits<MaterialType::Dielectric> {
   using Bsdf = DielectricBsdf;
   static auto& params(auto& tables) { return tables.dielectric; }  // MaterialTables, const or not
   static constexpr bool kSingleLobe = false, kBatchEval = false;
-  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc, TransportMode mode) {
+  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc,
+                   TransportMode mode) {
     const DielectricParams& p = m.dielectric[i];
     return Bsdf(detail::positive_eta(tex.eval(p.eta, tc)), detail::distribution(tex, p.roughness, tc),
                 mode, detail::clamp01(tex.eval(p.reflect_tint, tc)),
@@ -106,7 +111,8 @@ struct MaterialTraits<MaterialType::ThinDielectric> {
   using Bsdf = ThinDielectricBsdf;
   static auto& params(auto& tables) { return tables.thin_dielectric; }  // MaterialTables, const or not
   static constexpr bool kSingleLobe = false, kBatchEval = false;
-  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc, TransportMode) {
+  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc,
+                   TransportMode) {
     const ThinDielectricParams& p = m.thin_dielectric[i];
     return Bsdf(detail::positive_eta(tex.eval(p.eta, tc)), detail::clamp01(tex.eval(p.reflect_tint, tc)),
                 detail::clamp01(tex.eval(p.transmit_tint, tc)));
@@ -118,7 +124,8 @@ struct MaterialTraits<MaterialType::CoatedDiffuse> {
   using Bsdf = CoatedDiffuseBsdf;
   static auto& params(auto& tables) { return tables.coated_diffuse; }  // MaterialTables, const or not
   static constexpr bool kSingleLobe = false, kBatchEval = false;
-  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc, TransportMode) {
+  static Bsdf bsdf(const MaterialTables& m, const TextureTable& tex, uint32_t i, const TextureContext& tc,
+                   TransportMode) {
     const CoatedDiffuseParams& p = m.coated_diffuse[i];
     return Bsdf(detail::clamp01(tex.eval(p.albedo, tc)), detail::positive_eta(tex.eval(p.eta, tc)),
                 detail::distribution(tex, p.roughness, tc));

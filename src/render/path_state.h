@@ -39,35 +39,45 @@ struct PathState {
   size_t size() const { return pixel.size(); }
 };
 
-/// Rays in SoA form, in queue order, each with the path it belongs to.
+/// Rays in SoA form, in queue order, each with the path it belongs to. The arrays only grow (size() counts the
+/// rays in use), so a push is one capacity check for all eight arrays, not eight push_backs.
 struct RayQueue {
   std::vector<float> ox, oy, oz, dx, dy, dz, t_max;
   std::vector<uint32_t> path;
 
-  void clear() {
-    ox.clear(); oy.clear(); oz.clear(); dx.clear(); dy.clear(); dz.clear(); t_max.clear(); path.clear();
+  void clear() { count_ = 0; }
+  /// Makes room for `n` rays in all, so that pushes up to there do not reallocate.
+  void reserve(size_t n) {
+    if (n > path.size()) grow(n);
   }
   void push(Vec3f o, Vec3f d, float t, uint32_t p) {
-    ox.push_back(o.x); oy.push_back(o.y); oz.push_back(o.z);
-    dx.push_back(d.x); dy.push_back(d.y); dz.push_back(d.z);
-    t_max.push_back(t); path.push_back(p);
+    if (count_ == path.size()) grow(count_ * 2 + 256);
+    const size_t k = count_++;
+    ox[k] = o.x; oy[k] = o.y; oz[k] = o.z;
+    dx[k] = d.x; dy[k] = d.y; dz[k] = d.z;
+    t_max[k] = t; path[k] = p;
   }
-  size_t size() const { return path.size(); }
+  size_t size() const { return count_; }
   Vec3f origin(size_t k) const { return {ox[k], oy[k], oz[k]}; }
   Vec3f dir(size_t k) const { return {dx[k], dy[k], dz[k]}; }
   RaySoA soa() const { return {ox.data(), oy.data(), oz.data(), dx.data(), dy.data(), dz.data(), t_max.data()}; }
+
+ private:
+  void grow(size_t n) {
+    for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_max}) v->resize(n);
+    path.resize(n);
+  }
+  size_t count_ = 0;
 };
 
 /// Shadow rays and the radiance each carries to its path if unoccluded.
 struct ShadowQueue : RayQueue {
   std::vector<Rgb> contribution;
-  void clear() {
-    RayQueue::clear();
-    contribution.clear();
-  }
   void push(Vec3f o, Vec3f d, float t, Rgb c, uint32_t p) {
+    const size_t k = size();
     RayQueue::push(o, d, t, p);
-    contribution.push_back(c);
+    if (contribution.size() < path.size()) contribution.resize(path.size());  // follows the rays' growth
+    contribution[k] = c;
   }
 };
 

@@ -11,7 +11,7 @@ void sort_hits(const Scene& scene, const TransportRules& rules, const Sampler& s
                const RayQueue& rays, HitQueue& hits, PathState& ps, MaterialQueues& out) {
   uint32_t counts[kMaterialTypeCount] = {};
   const size_t n = rays.size();
-  out.slots.resize(n);
+  out.unsorted.resize(n);
   size_t kept = 0;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t i = rays.path[k];
@@ -35,18 +35,19 @@ void sort_hits(const Scene& scene, const TransportRules& rules, const Sampler& s
         mix_bits((uint64_t(px) << 32 | si) ^ (uint64_t(ps.depth[i]) << 56)));
     hits.material[k] = m;
     ++counts[int(m.type)];
-    out.slots[kept++] = uint32_t(k);
+    out.unsorted[kept++] = uint32_t(k);
   }
 
   // Counting sort of the surviving slots by material type: one contiguous queue per type. The kept slots sit
-  // in out.slots[0, kept) in queue order; sort them through a copy.
+  // in out.unsorted[0, kept) in queue order.
   out.begin[0] = 0;
   for (int t = 0; t < kMaterialTypeCount; ++t) out.begin[t + 1] = out.begin[t] + counts[t];
   uint32_t cursor[kMaterialTypeCount];
   for (int t = 0; t < kMaterialTypeCount; ++t) cursor[t] = out.begin[t];
-  out.unsorted.assign(out.slots.begin(), out.slots.begin() + kept);
   out.slots.resize(kept);
-  for (const uint32_t k : out.unsorted) out.slots[cursor[int(hits.material[k].type)]++] = k;
+  for (size_t j = 0; j < kept; ++j) {
+    const uint32_t k = out.unsorted[j]; out.slots[cursor[int(hits.material[k].type)]++] = k;
+  }
 }
 
 }  // namespace torte

@@ -113,7 +113,10 @@ MaterialRef MaterialFlattener::add(const MaterialDesc& d, int level) {
     if constexpr (T == MaterialType::CoatedDiffuse)
       return CoatedDiffuseParams{textures_.add(d.color), textures_.add(d.eta), roughness(d.roughness)};
   };
-  if (dispatch_shaded(d.type, [&](auto t) { ref = push(MaterialTraits<t()>::params(tables_), d.type, leaf_params(t)); })) {
+  const bool leaf = dispatch_shaded(d.type, [&](auto t) {
+    ref = push(MaterialTraits<t()>::params(tables_), d.type, leaf_params(t));
+  });
+  if (leaf) {
     refs_.emplace(&d, ref);
     return ref;
   }
