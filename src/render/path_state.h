@@ -82,12 +82,15 @@ struct ShadowQueue : RayQueue {
 };
 
 /// Trace results of a RayQueue, by queue slot: the hit, and for hits queued for shading the reconstructed
-/// surface and the resolved (leaf) material.
+/// surface and the resolved (leaf) material. The arrays only grow: shrinking and regrowing them every batch would
+/// value-initialise every SurfaceHit again.
 struct HitQueue {
   std::vector<Hit> hit;
   std::vector<SurfaceHit> surface;
   std::vector<MaterialRef> material;
+  /// Makes room for slots [0, n).
   void resize(size_t n) {
+    if (hit.size() >= n) return;
     hit.resize(n);
     surface.resize(n);
     material.resize(n);
