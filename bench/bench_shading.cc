@@ -56,7 +56,7 @@ Recording* record() {
     r->settings.width = r->settings.height = 128;
     r->settings.spp = 2;
     const Scene& scene = *r->scene;
-    const Camera camera(scene.camera, r->settings.width, r->settings.height);
+    const Camera camera(test::material_room_camera(), r->settings.width, r->settings.height);
     PathState& ps = r->recorded;
     reference::PerHitBsdf holder;
     auto push = [&](uint32_t px, uint32_t si, const Ray& ray_in, uint16_t depth, Rgb beta, float pdf, uint8_t flags,

@@ -12,6 +12,7 @@
 #include "file_access.h"
 #include "film/image_io.h"
 #include "progress.h"
+#include "render/render_settings.h"
 #include "script_limits.h"
 #include "types.h"
 
@@ -186,14 +187,17 @@ int l_filter(lua_State* L) {
   return 1;
 }
 
-void print_summary(const RenderedImage& img, double build_seconds, const RenderSettings& s) {
+void print_summary(const RenderedImage& img, const RenderSettings& s) {
   const RenderStats& st = img.stats;
   const double mrays = st.render_seconds > 0 ? double(st.rays()) / st.render_seconds * 1e-6 : 0;
+  char reused[64];  // a reused scene costs only its fingerprint: show that it is ~0, not "0.0 s"
+  std::snprintf(reused, sizeof reused, "%.2f ms (scene unchanged, reused)", img.build_seconds * 1e3);
   std::fprintf(stderr,
                "render %dx%d, %d spp%s: build %s, render %s; %.1f M rays (camera %.1f M, extension %.1f M, shadow "
                "%.1f M), %.2f Mrays/s; %llu NaN/Inf samples dropped\n",
                s.width, s.height, s.spp, st.interrupted ? " (INTERRUPTED: partial image)" : "",
-               format_duration(build_seconds).c_str(), format_duration(st.render_seconds).c_str(),
+               img.scene_reused ? reused : format_duration(img.build_seconds).c_str(),
+               format_duration(st.render_seconds).c_str(),
                double(st.rays()) * 1e-6, double(st.camera_rays) * 1e-6, double(st.extension_rays) * 1e-6,
                double(st.shadow_rays) * 1e-6, mrays, static_cast<unsigned long long>(st.dropped_samples));
 }
@@ -249,19 +253,8 @@ int l_render(lua_State* L) {
   s.seed = uint64_t(seed);
   if (auto f = kw.object<Filter>("filter", true)) s.filter = *f;
   kw.finish();
-  if (s.width <= 0 || s.height <= 0) kw.fail("width", "and 'height' must be positive");
-  if (uint64_t(s.width) * uint64_t(s.height) > kMaxRenderPixels)
-    kw.fail("width", "x 'height' = " + std::to_string(s.width) + "x" + std::to_string(s.height) + " = " +
-                         std::to_string(uint64_t(s.width) * uint64_t(s.height)) +
-                         " pixels, more than the limit of " + std::to_string(kMaxRenderPixels) + " (2^28)");
-  if (s.spp <= 0 || s.spp > kMaxSpp)
-    kw.fail("spp", "must be in [1, " + std::to_string(kMaxSpp) + "], got " + std::to_string(s.spp));
-  if (s.max_depth < 0 || s.max_depth > 10000)
-    kw.fail("max_depth", "must be in [0, 10000], got " + std::to_string(s.max_depth));
-  if (s.vpl_sets < 1 || s.vpl_sets > 65536) kw.fail("vpl_sets", "must be in [1, 65536]");
-  if (s.light_paths < 1 || s.light_paths > (1 << 24)) kw.fail("light_paths", "must be in [1, 16777216]");
-  if (!(s.g_limit > 0)) kw.fail("g_limit", "must be positive (relative to 1/R^2, R the scene's bounding radius)");
-  if (!(s.vpl_roulette >= 0 && s.vpl_roulette <= 1)) kw.fail("vpl_roulette", "must be in [0, 1]");
+  // The rules are render()'s (render/render_settings.h); checked here to name the keyword before the build.
+  if (const auto problem = find_settings_problem(s)) kw.fail(problem->key, problem->problem);
   if (ctx.spp_override > 0) s.spp = ctx.spp_override;
   if (ctx.seed_override >= 0) s.seed = uint64_t(ctx.seed_override);
   if (ctx.interrupted || interrupt_requested()) throw Interrupted("interrupted: torte.render was not started");
@@ -270,17 +263,16 @@ int l_render(lua_State* L) {
                                              std::to_string(s.height) + " image's film");
 
   const auto t0 = std::chrono::steady_clock::now();
-  std::shared_ptr<Scene> flat;
+  SceneCache::Lookup built;
   try {
-    flat = build_scene(*scene, ctx.quiet);
+    built = ctx.scene_cache.get(*scene, [&] { return build_scene(*scene, ctx.quiet); });
   } catch (const Interrupted&) {
     throw;
   } catch (const Error& e) {
     throw Error(std::string("torte.render: ") + e.what());  // the shape, light or group named comes after
   }
-  flat->camera = *camera;
-  flat->has_camera = true;
-  if (const std::string why = black_image_reason(*flat); !why.empty()) {
+  const Scene& flat = *built.scene;
+  if (const std::string why = black_image_reason(flat); !why.empty()) {
     luaL_where(L, 1);
     std::fprintf(stderr, "torte: warning: %storte.render: %s\n", lua_tostring(L, -1), why.c_str());
     lua_pop(L, 1);
@@ -291,7 +283,7 @@ int l_render(lua_State* L) {
   auto img = std::make_shared<RenderedImage>();
   RenderOutput out;
   try {
-    out = render(*flat, Camera(flat->camera, s.width, s.height), s, ctx.quiet ? nullptr : &progress, ctx.cancel);
+    out = render(flat, Camera(*camera, s.width, s.height), s, ctx.quiet ? nullptr : &progress, ctx.cancel);
   } catch (...) {
     progress.finish();
     throw;
@@ -299,6 +291,8 @@ int l_render(lua_State* L) {
   progress.finish();
   img->image = std::move(out.image);
   img->stats = out.stats;
+  img->build_seconds = build_seconds;
+  img->scene_reused = built.reused;
   if (out.stats.interrupted || interrupt_requested()) {  // Ctrl-C: the script may still save this image
     ctx.interrupted = true;
     note_render_interrupted(L);
@@ -308,8 +302,8 @@ int l_render(lua_State* L) {
   ctx.rays += out.stats.rays();
   ctx.dropped_samples += out.stats.dropped_samples;
   ++ctx.renders;
-  if (!ctx.quiet) print_scene_summary(*flat);
-  if (!ctx.quiet || out.stats.interrupted) print_summary(*img, build_seconds, s);
+  if (!ctx.quiet) print_scene_summary(flat);
+  if (!ctx.quiet || out.stats.interrupted) print_summary(*img, s);
   if (out.stats.dropped_samples > 0 && ctx.quiet)
     std::fprintf(stderr, "warning: %llu NaN/Inf samples were dropped\n",
                  static_cast<unsigned long long>(out.stats.dropped_samples));
@@ -382,6 +376,10 @@ int image_index(lua_State* L) {
     lua_pushinteger(L, lua_Integer(img->stats.dropped_samples));
   } else if (key == "render_seconds") {
     lua_pushnumber(L, img->stats.render_seconds);
+  } else if (key == "build_seconds") {
+    lua_pushnumber(L, img->build_seconds);
+  } else if (key == "scene_reused") {
+    lua_pushboolean(L, img->scene_reused);
   } else if (key == "interrupted") {
     lua_pushboolean(L, img->stats.interrupted);
   } else {

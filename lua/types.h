@@ -5,6 +5,7 @@
 #include "film/image.h"
 #include "render/render.h"
 #include "scene/builder.h"
+#include "scene_cache.h"
 
 namespace torte::lua {
 
@@ -12,6 +13,8 @@ namespace torte::lua {
 struct RenderedImage {
   Image image;
   RenderStats stats;
+  double build_seconds = 0;   // flattening the scene and building its BVHs for this render
+  bool scene_reused = false;  // the scene of an earlier render was unchanged and served again (SceneCache)
 };
 
 template <> struct LuaName<MaterialDesc> { static constexpr const char* value = "torte.material"; };
@@ -35,6 +38,7 @@ struct RunContext {
   double build_seconds = 0, render_seconds = 0, write_seconds = 0;
   uint64_t rays = 0, dropped_samples = 0;
   int renders = 0;
+  SceneCache scene_cache;  // the last render's flattened scene, for the next renders of the same scene
 };
 RunContext& run_context(lua_State* L);
 

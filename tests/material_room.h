@@ -5,6 +5,7 @@
 #pragma once
 #include <memory>
 
+#include "camera/camera.h"
 #include "scene/builder.h"
 
 namespace torte::test {
@@ -81,11 +82,15 @@ inline std::shared_ptr<Scene> material_room() {
   point.radiance = Rgb(1.5f);
   b.add_light(point);
 
+  return b.flatten();
+}
+
+// The view of the room the tests and the shading benchmark render.
+inline CameraDesc material_room_camera() {
   CameraDesc cam;
   cam.camera_to_world = look_at({0, -0.2f, -1.9f}, {0, -0.9f, 0.3f}, {0, 1, 0});
   cam.fov_degrees = 65;
-  b.set_camera(cam);
-  return b.flatten();
+  return cam;
 }
 
 }  // namespace torte::test

@@ -109,15 +109,15 @@ struct PixelEstimate {
 
 class PathTracer {
  public:
-  PathTracer(const Scene& scene, const RenderSettings& settings, Options opt = {})
-      : scene_(scene), settings_(settings), opt_(opt) {}
+  PathTracer(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings, Options opt = {})
+      : scene_(scene), camera_(camera), settings_(settings), opt_(opt) {}
 
   // Radiance along `ray` (the camera ray of a path). Recursive: one call per path vertex.
   Rgb radiance(const Ray& ray, Pcg32& rng) const { return li(ray, 0, true, 0, Rgb(1), 1, rng); }
 
   // Every pixel at `spp` samples (filter importance sampled like the renderer), in parallel over rows.
   std::vector<PixelEstimate> render(int spp, uint64_t seed) const {
-    const Camera camera(scene_.camera, settings_.width, settings_.height);
+    const Camera camera(camera_, settings_.width, settings_.height);
     std::vector<PixelEstimate> out(size_t(settings_.width) * settings_.height);
     tbb::parallel_for(0, settings_.height, [&](int y) {
       for (int x = 0; x < settings_.width; ++x) {
@@ -241,6 +241,7 @@ class PathTracer {
   }
 
   const Scene& scene_;
+  CameraDesc camera_;
   const RenderSettings& settings_;
   Options opt_;
 };

@@ -6,20 +6,8 @@
 #include <cstring>
 #include <memory>
 
-#include "core/error.h"
 #include "render/render.h"
 #include "scene/builder.h"
-
-namespace torte {
-
-// The tests' scenes carry their camera (SceneBuilder::set_camera): render it at the settings' size.
-inline RenderOutput render(const Scene& scene, const RenderSettings& s, ProgressSink* progress = nullptr,
-                           const std::atomic<bool>* cancel = nullptr) {
-  if (!scene.has_camera) throw Error("the scene has no camera");
-  return render(scene, Camera(scene.camera, s.width, s.height), s, progress, cancel);
-}
-
-}  // namespace torte
 
 namespace torte::test {
 
@@ -59,6 +47,12 @@ inline CameraDesc furnace_camera() {
   return c;
 }
 
+// render() as `camera` sees the scene: the Camera is made for the settings' image size.
+inline RenderOutput render_view(const Scene& scene, const CameraDesc& camera, const RenderSettings& s,
+                                const std::atomic<bool>* cancel = nullptr) {
+  return render(scene, Camera(camera, s.width, s.height), s, nullptr, cancel);
+}
+
 // Mean colour of the pixels [x0, x1) x [y0, y1).
 inline Rgb tile_mean(const Image& img, int x0, int y0, int x1, int y1) {
   Rgb sum(0);
@@ -68,20 +62,20 @@ inline Rgb tile_mean(const Image& img, int x0, int y0, int x1, int y1) {
 }
 
 // The image must not depend on the thread count (bitwise), and must depend on the seed.
-inline void check_thread_determinism(const Scene& scene, RenderSettings s) {
+inline void check_thread_determinism(const Scene& scene, const CameraDesc& camera, RenderSettings s) {
   Image one, two;
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = render(scene, s).image;
+    one = render_view(scene, camera, s).image;
   }
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    two = render(scene, s).image;
+    two = render_view(scene, camera, s).image;
   }
   REQUIRE(one.pixels.size() == two.pixels.size());
   CHECK(std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(Rgb)) == 0);
   s.seed += 1;
-  const Image other = render(scene, s).image;
+  const Image other = render_view(scene, camera, s).image;
   CHECK(std::memcmp(one.pixels.data(), other.pixels.data(), one.pixels.size() * sizeof(Rgb)) != 0);
 }
 

@@ -68,14 +68,13 @@ TEST_CASE("Thin lens renders: aperture 0 equals the pinhole image, focused edge 
     cam.fov_degrees = 30;
     cam.aperture_radius = aperture;
     cam.focus_distance = focus;
-    b.set_camera(cam);
     const auto scene = b.flatten();
     RenderSettings s;
     s.width = 32;
     s.height = 8;
     s.spp = 64;
     s.max_depth = 1;
-    return render(*scene, s).image;
+    return render_view(*scene, cam, s).image;
   };
   auto column = [](const Image& img, int x) {
     double sum = 0;

@@ -460,7 +460,6 @@ TEST_CASE("Distant light: delta, irradiance, power from the scene's bounding sph
   SceneBuilder b;
   b.add_shape(quad_shape(0, 1, matte(0.5f)));
   b.add_light(l);
-  b.set_camera(top_down_camera(1));
   const auto scene = b.flatten();
   LightSample s;
   REQUIRE(sample_light(*scene, scene->lights[0], {0, 0, 0}, {0.3f, 0.3f}, &s));
@@ -472,7 +471,7 @@ TEST_CASE("Distant light: delta, irradiance, power from the scene's bounding sph
   rs.width = rs.height = 8;
   rs.spp = 4;
   rs.max_depth = 1;
-  const Image img = render(*scene, rs).image;
+  const Image img = render_view(*scene, top_down_camera(1), rs).image;
   // Lambert: albedo / pi x irradiance x cos(45 degrees).
   CHECK(img.at(4, 4).g == Approx(0.5f / kPi * 2 * std::sqrt(0.5f)).epsilon(1e-3));
 }
@@ -488,13 +487,12 @@ TEST_CASE("Spot light renders intensity / d^2 under the axis", "[light][spot][re
   l.cos_total = std::cos(20 * kPi / 180);
   l.cos_falloff_start = std::cos(15 * kPi / 180);
   b.add_light(l);
-  b.set_camera(top_down_camera(4));
   const auto scene = b.flatten();
   RenderSettings rs;
   rs.width = rs.height = 16;
   rs.spp = 4;
   rs.max_depth = 1;
-  const Image img = render(*scene, rs).image;
+  const Image img = render_view(*scene, top_down_camera(4), rs).image;
   CHECK(img.at(8, 8).g == Approx(0.5f / kPi * 8 / 4).epsilon(2e-2));  // within the cone (a few degrees off axis)
   CHECK(img.at(0, 0).g == 0);  // corner: outside the cone
 }
@@ -504,12 +502,11 @@ TEST_CASE("furnace: a constant environment map renders like the uniform infinite
     SceneBuilder b;
     b.add_shape(sphere_shape(1, Transform(), matte(0.8f)));
     b.add_light(light);
-    b.set_camera(furnace_camera());
     const auto scene = b.flatten();
     RenderSettings s;
     s.width = s.height = 24;
     s.spp = 32;
-    return render(*scene, s).image;
+    return render_view(*scene, furnace_camera(), s).image;
   };
   Light uni;
   uni.kind = LightKind::Infinite;
@@ -545,13 +542,12 @@ TEST_CASE("MIS with environment and sky lights: a lit plane matches the irradian
     SceneBuilder b;
     b.add_shape(quad_shape(0, 1, matte(0.5f)));
     b.add_light(light);
-    b.set_camera(top_down_camera(0.2f));
     const auto scene = b.flatten();
     RenderSettings rs;
     rs.width = rs.height = 8;
     rs.spp = 256;
     rs.max_depth = 1;
-    const Image img = render(*scene, rs).image;
+    const Image img = render_view(*scene, top_down_camera(0.2f), rs).image;
     double mean = 0;
     for (const Rgb& c : img.pixels) mean += c.g;
     mean /= double(img.pixels.size());

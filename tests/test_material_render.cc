@@ -41,13 +41,12 @@ double furnace(std::shared_ptr<const MaterialDesc> m, int spp = 64, int max_dept
   sky.kind = LightKind::Infinite;
   sky.radiance = Rgb(1);
   b.add_light(sky);
-  b.set_camera(furnace_camera());
   RenderSettings rs;
   rs.width = rs.height = 24;
   rs.spp = spp;
   rs.max_depth = max_depth;
   rs.integrator = integrator;
-  const Image img = render(*b.flatten(), rs).image;
+  const Image img = render_view(*b.flatten(), furnace_camera(), rs).image;
   double sum = 0;
   int n = 0;
   for (int y = 0; y < rs.height; ++y)

@@ -58,9 +58,10 @@ std::shared_ptr<Scene> test_room() {
   point.position = {1.2f, 0.5f, -1.2f};
   point.radiance = Rgb(1.5f);
   b.add_light(point);
-  b.set_camera(camera_at({0, 0, -1.9f}, {0, -0.3f, 0}, 70));
   return b.flatten();
 }
+
+const CameraDesc kRoomCamera = camera_at({0, 0, -1.9f}, {0, -0.3f, 0}, 70);
 
 struct TileStats {
   double mean = 0, var_of_mean = 0;
@@ -97,12 +98,11 @@ TEST_CASE("furnace: a Lambert sphere under a uniform infinite light renders its 
     sky.kind = LightKind::Infinite;
     sky.radiance = Rgb(1);
     b.add_light(sky);
-    b.set_camera(furnace_camera());
     const auto scene = b.flatten();
     RenderSettings s;
     s.width = s.height = 32;
     s.spp = 64;
-    const Image img = render(*scene, s).image;
+    const Image img = render_view(*scene, furnace_camera(), s).image;
     // Pixels fully inside the sphere's silhouette (radius 1 of 1.25 half-extent) and the background corners.
     double sum = 0;
     int n = 0;
@@ -125,21 +125,21 @@ TEST_CASE("furnace: inside a closed emitting Lambert sphere, depth k sees 1 - 0.
   shell.emission = Rgb(0.2f);
   shell.two_sided = true;
   b.add_shape(shell);
-  b.set_camera(camera_at({0.2f, -0.1f, 0.3f}, {0, 0, 1}, 60));
+  const CameraDesc cam = camera_at({0.2f, -0.1f, 0.3f}, {0, 0, 1}, 60);
   const auto scene = b.flatten();
   RenderSettings s;
   s.width = s.height = 16;
   s.spp = 64;
   for (int k = 0; k <= 4; ++k) {
     s.max_depth = k;
-    const Image img = render(*scene, s).image;
+    const Image img = render_view(*scene, cam, s).image;
     const double expected = 1 - std::pow(0.8, k + 1);
     INFO("max_depth " << k);
     CHECK(mean_channel(img, 0, 0, 16, 16) == Approx(expected).epsilon(0.01));
   }
   s.max_depth = 10000;  // Russian roulette ends the paths; the estimate must stay unbiased
   s.spp = 512;          // long paths: ~0.2 % standard error at this count
-  const Image img = render(*scene, s).image;
+  const Image img = render_view(*scene, cam, s).image;
   CHECK(mean_channel(img, 0, 0, 16, 16) == Approx(1.0).epsilon(0.005));
 }
 
@@ -149,12 +149,11 @@ TEST_CASE("the furnace test can fail: a wrong albedo is detected", "[render][fur
   shell.emission = Rgb(0.2f);
   shell.two_sided = true;
   b.add_shape(shell);
-  b.set_camera(camera_at({0, 0, 0}, {0, 0, 1}, 60));
   RenderSettings s;
   s.width = s.height = 16;
   s.spp = 32;
   s.max_depth = 3;
-  const Image img = render(*b.flatten(), s).image;
+  const Image img = render_view(*b.flatten(), camera_at({0, 0, 0}, {0, 0, 1}, 60), s).image;
   CHECK(std::fabs(mean_channel(img, 0, 0, 16, 16) - (1 - std::pow(0.8, 4))) > 0.05);
 }
 
@@ -165,11 +164,11 @@ TEST_CASE("direct equals path at max_depth 1 within noise (tile means)", "[rende
   s.spp = 64;
   s.max_depth = 1;
   s.integrator = IntegratorKind::Path;
-  const Image path = render(*scene, s).image;
+  const Image path = render_view(*scene, kRoomCamera, s).image;
   s.integrator = IntegratorKind::Direct;
   s.sample_all_lights = true;
   s.seed = 7;
-  const Image direct = render(*scene, s).image;
+  const Image direct = render_view(*scene, kRoomCamera, s).image;
   const auto a = tile_stats(path, 8), b = tile_stats(direct, 8);
   int outliers = 0;
   double total_a = 0, total_b = 0;
@@ -186,7 +185,7 @@ TEST_CASE("direct equals path at max_depth 1 within noise (tile means)", "[rende
   SECTION("and a real difference is detected: path at depth 3 is brighter") {
     s.integrator = IntegratorKind::Path;
     s.max_depth = 3;
-    const Image deep = render(*scene, s).image;
+    const Image deep = render_view(*scene, kRoomCamera, s).image;
     const auto c = tile_stats(deep, 8);
     double total_c = 0;
     for (const auto& t : c) total_c += t.mean;
@@ -202,7 +201,7 @@ TEST_CASE("the same seed gives a bitwise identical image at 1 and 2 threads", "[
   s.spp = 8;
   s.max_depth = 8;
   s.filter = Filter::mitchell();
-  check_thread_determinism(*scene, s);
+  check_thread_determinism(*scene, kRoomCamera, s);
 }
 
 TEST_CASE("max_depth 0 shows only what emits", "[render]") {
@@ -211,7 +210,7 @@ TEST_CASE("max_depth 0 shows only what emits", "[render]") {
   s.width = s.height = 24;
   s.spp = 4;
   s.max_depth = 0;
-  const Image img = render(*scene, s).image;
+  const Image img = render_view(*scene, kRoomCamera, s).image;
   int lit = 0;
   for (const Rgb& c : img.pixels) lit += c.g > 0;
   CHECK(lit > 0);
@@ -241,7 +240,6 @@ TEST_CASE("NaN radiance never reaches the film and is counted", "[render]") {
   ShapeDesc lamp = sphere_shape(1, Transform(), matte(0.5f));
   lamp.emission = Rgb(1);
   b.add_shape(lamp);
-  b.set_camera(camera_at({0, 0, -3}, {0, 0, 0}, 40));
   // Input validation rejects NaN emission, so poison the flattened scene to make the integrator produce NaN.
   const auto scene = b.flatten();
   scene->lights[0].radiance = Rgb(NAN, 1, 1);
@@ -249,7 +247,7 @@ TEST_CASE("NaN radiance never reaches the film and is counted", "[render]") {
   s.width = s.height = 8;
   s.spp = 2;
   s.max_depth = 0;
-  const RenderOutput out = render(*scene, s);
+  const RenderOutput out = render_view(*scene, camera_at({0, 0, -3}, {0, 0, 0}, 40), s);
   CHECK(out.stats.dropped_samples > 0);
   for (const Rgb& c : out.image.pixels) CHECK(c.is_finite());
 }
@@ -260,7 +258,7 @@ TEST_CASE("a cancelled render stops early and keeps the samples done", "[render]
   s.width = s.height = 32;
   s.spp = 64;
   std::atomic<bool> cancel{true};
-  const RenderOutput out = render(*scene, s, nullptr, &cancel);
+  const RenderOutput out = render_view(*scene, kRoomCamera, s, &cancel);
   CHECK(out.stats.interrupted);
   CHECK(out.stats.samples_done < uint64_t(32 * 32 * 64));
 }

@@ -213,19 +213,21 @@ TEST_CASE("limits: render sizes are bounded and the film is checked against the 
   SceneBuilder b;
   b.add_shape(test::sphere_shape(1, Transform(), test::matte(0.5f)));
   auto scene = b.flatten();
-  scene->camera = test::camera_at({0, 0, -4}, {0, 0, 0}, 40);
-  scene->has_camera = true;
+  const CameraDesc cam = test::camera_at({0, 0, -4}, {0, 0, 0}, 40);
   RenderSettings s;
   s.width = 1 << 15, s.height = 1 << 14;
-  CHECK(error_of([&] { render(*scene, s); }) ==
-        "a 32768x16384 image has 536870912 pixels, more than the limit of 268435456 (2^28)");
+  CHECK(error_of([&] { test::render_view(*scene, cam, s); }) ==
+        "'width' x 'height' = 32768x16384 = 536870912 pixels, more than the limit of 268435456 (2^28)");
   s.width = s.height = 8, s.spp = kMaxSpp + 1;
-  CHECK(error_of([&] { render(*scene, s); }) == "spp must be in [1, 16777216], got 16777217");
+  CHECK(error_of([&] { test::render_view(*scene, cam, s); }) == "'spp' must be in [1, 16777216], got 16777217");
   s.spp = 1;
+  // A camera made for another size would leave part of the image unseen (or look outside it).
+  CHECK(error_of([&] { render(*scene, Camera(cam, 16, 8), s); }) ==
+        "the camera was made for a 16x8 image, the settings ask for 8x8");
   s.width = s.height = 8192;  // 64 M pixels: 1.7 GB of film and image
   CHECK(render_memory_bytes(s) == uint64_t(8192) * 8192 * 28);
   ScopedMemoryLimit limit(uint64_t(256) << 20);
-  CHECK_THAT(error_of([&] { render(*scene, s); }),
+  CHECK_THAT(error_of([&] { test::render_view(*scene, cam, s); }),
              Contains("the 8192x8192 image's film needs ~1.8 GB") && Contains("over the memory limit of 256 MB"));
 }
 
@@ -255,11 +257,10 @@ TEST_CASE("limits: an image lookup that fails makes the render fail naming the f
   point.radiance = Rgb(10);
   b.add_light(point);
   auto scene = b.flatten();
-  scene->camera = test::camera_at({0, 0, -4}, {0, 0, 0}, 40);
-  scene->has_camera = true;
+  const CameraDesc cam = test::camera_at({0, 0, -4}, {0, 0, 0}, 40);
   RenderSettings s;
   s.width = s.height = 16, s.spp = 4;
-  CHECK(error_of([&] { render(*scene, s); }) == "cannot read image texture 'cut.exr' while rendering");
+  CHECK(error_of([&] { test::render_view(*scene, cam, s); }) == "cannot read image texture 'cut.exr' while rendering");
   CHECK(image->failed);
 }
 

@@ -33,7 +33,6 @@ SceneBuilder furnace_scene(std::shared_ptr<const MaterialDesc> m) {
   sky.kind = LightKind::Infinite;
   sky.radiance = Rgb(1);
   b.add_light(sky);
-  b.set_camera(furnace_camera());
   return b;
 }
 
@@ -91,8 +90,8 @@ TEST_CASE("the deepest allowed mix/bump chain resolves and renders like its leaf
   for (int i = 0; i < kMaxMaterialNesting; ++i)
     chain = i % 2 ? make_mix(chain, matte(0.05f), constant_input(0)) : make_bump(chain, constant_input(0), 1);
   const RenderSettings rs = small_render(32, 32);
-  const Image deep = render(*furnace_scene(chain).flatten(), rs).image;
-  const Image leaf = render(*furnace_scene(matte(0.6f)).flatten(), rs).image;
+  const Image deep = render_view(*furnace_scene(chain).flatten(), furnace_camera(), rs).image;
+  const Image leaf = render_view(*furnace_scene(matte(0.6f)).flatten(), furnace_camera(), rs).image;
   CHECK(worst_tile_difference(deep, leaf) < 0.05);
   CHECK(image_mean(deep) == Approx(image_mean(leaf)).epsilon(0.02));
 }
@@ -215,7 +214,6 @@ TEST_CASE("point, spot and directional lights in instanced groups light the scen
     ShapeDesc wall = floor;
     wall.transform = translate({0, 0, 3}) * scale({4, 3, 0.1f});
     b->add_shape(wall);
-    b->set_camera(camera_at({0, 1.5f, -5}, {0, 0, 1}, 50));
   }
   // A middle group: instances of instances compose their transforms.
   auto middle = std::make_shared<SceneBuilder>();
@@ -232,7 +230,8 @@ TEST_CASE("point, spot and directional lights in instanced groups light the scen
   RenderSettings rs = small_render(48, 16);
   rs.max_depth = 1;
   rs.sample_all_lights = true;
-  const Image ia = render(*a, rs).image, ib = render(*b, rs).image;
+  const CameraDesc cam = camera_at({0, 1.5f, -5}, {0, 0, 1}, 50);
+  const Image ia = render_view(*a, cam, rs).image, ib = render_view(*b, cam, rs).image;
   CHECK(image_mean(ib) > 0.01);
   CHECK(worst_tile_difference(ia, ib) < 0.05);
   CHECK(image_mean(ia) == Approx(image_mean(ib)).epsilon(0.01));
@@ -321,11 +320,11 @@ TEST_CASE("a filter wider than the image blurs the frame instead of turning it b
   SceneBuilder b = furnace_scene(matte(0.8f));
   const auto scene = b.flatten();
   RenderSettings rs = small_render(24, 64);
-  const double reference = image_mean(render(*scene, rs).image);
+  const double reference = image_mean(render_view(*scene, furnace_camera(), rs).image);
   REQUIRE(reference > 0.1);
   for (const Filter& f : {Filter::box(100), Filter::triangle(300), Filter::gaussian(200, 60), Filter::mitchell(500)}) {
     rs.filter = f;
-    const Image img = render(*scene, rs).image;
+    const Image img = render_view(*scene, furnace_camera(), rs).image;
     // Every pixel now averages the whole frame: the image mean is kept and no corner is black.
     CHECK(image_mean(img) == Approx(reference).epsilon(0.06));
     CHECK(tile_mean(img, 0, 0, 8, 8).average() > 0.5 * reference);

@@ -277,8 +277,6 @@ TEST_CASE("Voxel emitters render like the same emitters as mesh area lights", "[
   flame.two_sided = true;
   meshes.add_shape(flame);
   const CameraDesc cam = test::camera_at({0, 7, -7}, {0, 0.5f, 0}, 50);
-  voxels.set_camera(cam);
-  meshes.set_camera(cam);
   const auto a = voxels.flatten(), c = meshes.flatten();
   for (IntegratorKind kind : {IntegratorKind::Path, IntegratorKind::Direct}) {
     RenderSettings s;
@@ -286,9 +284,9 @@ TEST_CASE("Voxel emitters render like the same emitters as mesh area lights", "[
     s.spp = 64;
     s.max_depth = 4;
     s.integrator = kind;
-    const Image ia = render(*a, s).image;
+    const Image ia = test::render_view(*a, cam, s).image;
     s.seed = 99;
-    const Image ic = render(*c, s).image;
+    const Image ic = test::render_view(*c, cam, s).image;
     // Tiles of 8x8 pixels: the floor lit by both emitters, and the emitters themselves.
     int compared = 0;
     for (int ty = 0; ty < 6; ++ty)

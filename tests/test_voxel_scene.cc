@@ -86,13 +86,12 @@ TEST_CASE("voxel grid in a scene renders its per-id materials", "[voxel][render]
   CameraDesc cam;
   cam.camera_to_world = look_at({0, 2, -12}, {0, 2, 0}, {0, 1, 0});
   cam.fov_degrees = 30;
-  b.set_camera(cam);
   const auto scene = b.flatten();
   RenderSettings s;
   s.width = s.height = 32;
   s.spp = 8;
   s.integrator = IntegratorKind::Direct;
-  const Image img = render(*scene, s).image;
+  const Image img = render(*scene, Camera(cam, s.width, s.height), s).image;
   // World +x is the image's left: ids 2 (green, x >= 0) on the left, 1 (red) on the right.
   const Rgb left = tile_mean(img, 6, 12, 14, 20), right = tile_mean(img, 18, 12, 26, 20);
   const Rgb corner = tile_mean(img, 0, 0, 3, 3);

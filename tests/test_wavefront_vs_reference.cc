@@ -72,9 +72,10 @@ TEST_CASE("wavefront render equals the per-hit reference path tracer within nois
   s.spp = 256;
   s.max_depth = 12;
   s.seed = 3;
-  const Image wf = render(*scene, s).image;
+  const CameraDesc cam = test::material_room_camera();
+  const Image wf = render(*scene, Camera(cam, s.width, s.height), s).image;
   const int ref_spp = 512;
-  const reference::PathTracer reference(*scene, s);
+  const reference::PathTracer reference(*scene, cam, s);
   const auto ref = reference.render(ref_spp, 11);
 
   const TileComparison cmp = compare_tiles(wf, s.spp, ref, ref_spp, 8);
@@ -89,7 +90,7 @@ TEST_CASE("wavefront render equals the per-hit reference path tracer within nois
     reference::Options bad;
     bad.scaled_type = MaterialType::Conductor;
     bad.scale = 2;
-    const reference::PathTracer wrong(*scene, s, bad);
+    const reference::PathTracer wrong(*scene, cam, s, bad);
     const auto ref_bad = wrong.render(128, 12);
     const TileComparison bad_cmp = compare_tiles(wf, s.spp, ref_bad, 128, 8);
     INFO("worst " << bad_cmp.worst << " (" << bad_cmp.max_z << " standard errors)");

@@ -33,6 +33,9 @@ class Camera {
   Ray generate_ray(Vec2f raster, Vec2f lens_u) const;
   bool has_lens() const { return desc_.aperture_radius > 0; }
   const CameraDesc& desc() const { return desc_; }
+  // The image size the camera was made for, in pixels.
+  float image_width() const { return width_; }
+  float image_height() const { return height_; }
   // Pixel footprint for texture filtering (a ray cone): world-space width of a pixel at the ray origin, and its
   // growth per unit distance (the angle a pixel subtends; 0 for orthographic cameras).
   float footprint_at_origin() const {

@@ -1,19 +1,11 @@
 #include "render/integrator_igi.h"
 
-#include "core/error.h"
 #include "render/integrator_direct.h"
 #include "render/tile_loop.h"
 #include "render/vpl.h"
 #include "render/wavefront.h"
 
 namespace torte {
-
-void IgiSettings::validate() const {
-  if (vpl_sets < 1 || vpl_sets > 65536) throw Error("vpl_sets must be in [1, 65536]");
-  if (light_paths < 1 || light_paths > (1 << 24)) throw Error("light_paths must be in [1, 2^24]");
-  if (!(g_limit > 0)) throw Error("g_limit must be positive (infinity disables the clamp)");
-  if (!(vpl_roulette >= 0 && vpl_roulette <= 1)) throw Error("vpl_roulette must be in [0, 1]");
-}
 
 namespace {
 

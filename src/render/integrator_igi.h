@@ -55,8 +55,6 @@ struct IgiSettings {
   static IgiSettings from(const RenderSettings& s) {
     return {s.max_depth, s.rr_depth, s.sample_all_lights, s.vpl_sets, s.light_paths, s.g_limit, s.vpl_roulette};
   }
-  /// Throws torte::Error naming the first parameter out of range.
-  void validate() const;
 };
 
 /// Renders with instant global illumination (settings already validated, camera made for their size).

@@ -41,19 +41,6 @@ std::string texture_failure(const Scene& scene) {
 
 }  // namespace detail
 
-void validate(const RenderSettings& s) {
-  if (s.width <= 0 || s.height <= 0) throw Error("image width and height must be positive");
-  if (uint64_t(s.width) * uint64_t(s.height) > kMaxRenderPixels)
-    throw Error("a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image has " +
-                std::to_string(uint64_t(s.width) * uint64_t(s.height)) + " pixels, more than the limit of " +
-                std::to_string(kMaxRenderPixels) + " (2^28)");
-  if (s.spp <= 0 || s.spp > kMaxSpp)
-    throw Error("spp must be in [1, " + std::to_string(kMaxSpp) + "], got " + std::to_string(s.spp));
-  if (s.max_depth < 0 || s.max_depth > 10000) throw Error("max_depth must be in [0, 10000]");
-  if (s.tile_size <= 0) throw Error("tile size must be positive");
-  IgiSettings::from(s).validate();  // checked whatever the integrator, as before: a bad value is a bad script
-}
-
 uint64_t render_memory_bytes(const RenderSettings& s) {
   const uint64_t pixels = uint64_t(std::max(s.width, 0)) * uint64_t(std::max(s.height, 0));
   return pixels * (sizeof(PixelSum) + sizeof(Rgb));  // the film, then the image made from it
@@ -61,7 +48,7 @@ uint64_t render_memory_bytes(const RenderSettings& s) {
 
 RenderOutput render(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                     ProgressSink* progress, const std::atomic<bool>* cancel) {
-  validate(settings);
+  validate(settings, camera);  // render/render_settings.cc
   reserve_memory(render_memory_bytes(settings),
                  "the " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " image's film");
   switch (settings.integrator) {

@@ -29,9 +29,6 @@ struct RenderOutput {
 /// Bytes render() allocates for an image of these settings (film and result), checked against the memory budget.
 uint64_t render_memory_bytes(const RenderSettings& settings);
 
-/// Throws torte::Error naming the first setting out of its range (the integrator's own ones included).
-void validate(const RenderSettings& settings);
-
 /// Renders `camera`'s view of the scene; `camera` must be made for settings.width x settings.height. `cancel`
 /// (may be null) stops the render between tiles; the image then holds the samples done so far. Throws
 /// torte::Error for invalid settings, a film over the memory budget, or an image texture that fails to read

@@ -1,9 +1,11 @@
 #include "scene/builder.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <unordered_set>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -304,6 +306,54 @@ struct SceneBuilder::Flattening {
   }
 };
 
+uint64_t SceneBuilder::new_stamp() {
+  static std::atomic<uint64_t> next{1};
+  return next.fetch_add(1, std::memory_order_relaxed);
+}
+
+SceneBuilder::SceneBuilder(SceneBuilder&& other) noexcept
+    : shapes_(std::move(other.shapes_)),
+      instances_(std::move(other.instances_)),
+      lights_(std::move(other.lights_)),
+      stamp_(other.stamp_) {
+  other.shapes_.clear();
+  other.instances_.clear();
+  other.lights_.clear();
+  other.restamp();
+}
+
+SceneBuilder& SceneBuilder::operator=(SceneBuilder&& other) noexcept {
+  if (this == &other) return *this;
+  shapes_ = std::move(other.shapes_);
+  instances_ = std::move(other.instances_);
+  lights_ = std::move(other.lights_);
+  stamp_ = other.stamp_;
+  other.shapes_.clear();
+  other.instances_.clear();
+  other.lights_.clear();
+  other.restamp();
+  return *this;
+}
+
+std::vector<uint64_t> SceneBuilder::fingerprint() const {
+  // Iterative: scripts may nest groups deeper than flatten() accepts, and contain cycles that it refuses.
+  std::vector<uint64_t> stamps;
+  std::unordered_set<const SceneBuilder*> seen;
+  std::vector<const SceneBuilder*> pending{this};
+  while (!pending.empty()) {
+    const SceneBuilder* b = pending.back();
+    pending.pop_back();
+    if (!b || !seen.insert(b).second) continue;
+    stamps.push_back(b->stamp_);
+    // Pushed in reverse, so groups are visited in the order flatten() meets them.
+    for (auto it = b->instances_.rbegin(); it != b->instances_.rend(); ++it) pending.push_back(it->group.get());
+    for (auto it = b->shapes_.rbegin(); it != b->shapes_.rend(); ++it)
+      if (it->kind == ShapeDesc::Kind::Voxel && it->voxels)
+        for (auto c = it->voxels->cells.rbegin(); c != it->voxels->cells.rend(); ++c) pending.push_back(c->shapes.get());
+  }
+  return stamps;
+}
+
 SceneBuilder::~SceneBuilder() {
   // Groups this one alone keeps alive hand their instances to the work list before they die, so each dies with
   // no instances left and no destructor recurses.
@@ -356,8 +406,6 @@ std::shared_ptr<Scene> SceneBuilder::flatten(ProgressCounter* progress) const {
 
   for (const Light& l : lights_) scene->lights.push_back(l);
   scene->textures = f.textures.finish();
-  scene->camera = camera_;
-  scene->has_camera = has_camera_;
   scene->finalize(progress);
   return scene;
 }

@@ -40,10 +40,11 @@ struct InstanceDesc {
 class SceneBuilder {
  public:
   SceneBuilder() = default;
+  // A copy has the same content, so it may keep the stamp; what is moved from gets a new one (it is emptied).
   SceneBuilder(const SceneBuilder&) = default;
   SceneBuilder& operator=(const SceneBuilder&) = default;
-  SceneBuilder(SceneBuilder&&) = default;
-  SceneBuilder& operator=(SceneBuilder&&) = default;
+  SceneBuilder(SceneBuilder&& other) noexcept;
+  SceneBuilder& operator=(SceneBuilder&& other) noexcept;
   // Releases chains of groups iteratively: a script can nest groups arbitrarily deep (flatten refuses them, the
   // destructor must still not recurse once per level).
   ~SceneBuilder();
@@ -52,10 +53,18 @@ class SceneBuilder {
   static constexpr uint64_t kMaxInstances = uint64_t(1) << 28;
   static constexpr uint64_t kMaxInstancedLights = uint64_t(1) << 20;
 
-  void add_shape(ShapeDesc shape) { shapes_.push_back(std::move(shape)); }
-  void add_instance(InstanceDesc instance) { instances_.push_back(std::move(instance)); }
-  void add_light(const Light& light) { lights_.push_back(light); }
-  void set_camera(const CameraDesc& camera) { camera_ = camera; has_camera_ = true; }
+  void add_shape(ShapeDesc shape) {
+    shapes_.push_back(std::move(shape));
+    restamp();
+  }
+  void add_instance(InstanceDesc instance) {
+    instances_.push_back(std::move(instance));
+    restamp();
+  }
+  void add_light(const Light& light) {
+    lights_.push_back(light);
+    restamp();
+  }
   size_t shape_count() const { return shapes_.size(); }
   size_t light_count() const { return lights_.size(); }
   size_t instance_count() const { return instances_.size(); }
@@ -65,13 +74,20 @@ class SceneBuilder {
   // is pressed (core/interrupt.h). `progress` (optional): see Scene::finalize.
   std::shared_ptr<Scene> flatten(ProgressCounter* progress = nullptr) const;
 
+  /// What flatten() reads, as stamps: this builder's, then those of the groups it places through instances and
+  /// voxel cell shapes (depth first, each group once). Every change of a builder gives it a stamp never used
+  /// before in the process, and all else a builder holds (meshes, materials, textures, voxel trees, lights) is
+  /// immutable, so two equal fingerprints mean flatten() would build the same scene.
+  std::vector<uint64_t> fingerprint() const;
+
  private:
   struct Flattening;
+  static uint64_t new_stamp();
+  void restamp() { stamp_ = new_stamp(); }
   std::vector<ShapeDesc> shapes_;
   std::vector<InstanceDesc> instances_;
   std::vector<Light> lights_;
-  CameraDesc camera_;
-  bool has_camera_ = false;
+  uint64_t stamp_ = new_stamp();
 };
 
 }  // namespace torte

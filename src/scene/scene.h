@@ -1,12 +1,12 @@
 // The flattened, immutable scene the renderer reads: world-space SoA meshes, transformed analytic shapes, their
-// BVHs, instanced prototypes with a top-level BVH over the instances, material tables and lights. Built once per render{} by SceneBuilder::flatten.
+// BVHs, instanced prototypes with a top-level BVH over the instances, material tables and lights. Built by
+// SceneBuilder::flatten; it holds no camera, so one build serves renders from any view.
 #pragma once
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "camera/camera.h"
 #include "core/sampling.h"
 #include "geometry/mesh.h"
 #include "geometry/quadric.h"
@@ -80,8 +80,6 @@ class Scene {
   TextureTable textures;
   std::vector<Light> lights;
   Distribution1D light_selection;  // light selection proportional to power
-  CameraDesc camera;
-  bool has_camera = false;
 
   // Builds the BVHs (top-level geometry, every prototype, the instance level) and the light distribution; call
   // after filling the arrays above.

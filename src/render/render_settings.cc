@@ -1,0 +1,36 @@
+#include "render/render_settings.h"
+
+#include "core/error.h"
+
+namespace torte {
+
+std::optional<SettingsProblem> find_settings_problem(const RenderSettings& s) {
+  if (s.width <= 0 || s.height <= 0) return SettingsProblem{"width", "and 'height' must be positive"};
+  const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
+  if (pixels > kMaxRenderPixels)
+    return SettingsProblem{"width", "x 'height' = " + std::to_string(s.width) + "x" + std::to_string(s.height) + " = " +
+                                        std::to_string(pixels) + " pixels, more than the limit of " +
+                                        std::to_string(kMaxRenderPixels) + " (2^28)"};
+  if (s.spp <= 0 || s.spp > kMaxSpp)
+    return SettingsProblem{"spp", "must be in [1, " + std::to_string(kMaxSpp) + "], got " + std::to_string(s.spp)};
+  if (s.max_depth < 0 || s.max_depth > 10000)
+    return SettingsProblem{"max_depth", "must be in [0, 10000], got " + std::to_string(s.max_depth)};
+  if (s.tile_size <= 0) return SettingsProblem{"tile_size", "must be positive"};
+  if (s.vpl_sets < 1 || s.vpl_sets > 65536) return SettingsProblem{"vpl_sets", "must be in [1, 65536]"};
+  if (s.light_paths < 1 || s.light_paths > (1 << 24)) return SettingsProblem{"light_paths", "must be in [1, 16777216]"};
+  if (!(s.g_limit > 0))
+    return SettingsProblem{"g_limit", "must be positive (relative to 1/R^2, R the scene's bounding radius; infinity "
+                                      "disables the clamp)"};
+  if (!(s.vpl_roulette >= 0 && s.vpl_roulette <= 1)) return SettingsProblem{"vpl_roulette", "must be in [0, 1]"};
+  return std::nullopt;
+}
+
+void validate(const RenderSettings& s, const Camera& camera) {
+  if (const auto p = find_settings_problem(s)) throw Error(p->message());
+  if (camera.image_width() != float(s.width) || camera.image_height() != float(s.height))
+    throw Error("the camera was made for a " + std::to_string(int(camera.image_width())) + "x" +
+                std::to_string(int(camera.image_height())) + " image, the settings ask for " + std::to_string(s.width) +
+                "x" + std::to_string(s.height));
+}
+
+}  // namespace torte
