@@ -1,11 +1,11 @@
 // Shading benchmarks on recorded hits (no ray tracing in the timed loops):
 //   shading/wavefront      the renderer's path: hits counting-sorted by material type, shade_queue<T> per type
-//                          (phased kernels, SIMD phase-2 evaluation where MaterialTraits<T>::eval_batch exists)
+//                          (phased kernels, SIMD phase-2 evaluation where MaterialTraits<T>::kBatchEval)
 //   shading/per_hit        the previous per-hit path: the same hits in arrival order, the BSDF of each built behind
 //                          a virtual interface (tests/reference_path_tracer.h) and shaded alone
 //   eval/<type>/scalar     phase 2 only: the scalar loop of shade.h over a queue's light candidates
 //   eval/<type>/batch      phase 2 only: eval_batch_simd (gather to SoA + SIMD kernel + write back), which
-//                          MaterialTraits<T>::eval_batch uses for Oren-Nayar and Conductor (not Lambert: no gain)
+//                          shade_queue uses for Oren-Nayar and Conductor (not Lambert: no gain)
 //   eval/<type>/kernel     the SIMD kernel alone on pre-gathered SoA arrays (the gather's share is the difference)
 // Hits: a 128x128 image at 2 spp of tests/material_room.h (walls, Oren-Nayar, mirror, rough gold, plastic, glass),
 // camera hits and one bounce, shaded in wavefronts of 4096 hits (a 16x16 tile at 16 spp), as the renderer does.
@@ -39,8 +39,11 @@ constexpr size_t kWavefront = 4096;
 struct Recording {
   std::shared_ptr<Scene> scene;
   RenderSettings settings;
+  TransportRules rules;
   Sampler sampler{7};
-  PathState recorded;  // one entry per hit, ready to shade
+  PathState recorded;  // one entry per hit, ready to shade: path i is queue slot i of rays and hits
+  RayQueue rays;
+  HitQueue hits;
   std::array<size_t, kShadedMaterialTypeCount> per_type{};
 };
 
@@ -71,8 +74,7 @@ Recording* record() {
       ps.pixel[i] = px;
       ps.sample[i] = si;
       ps.filter_weight[i] = 1;
-      ps.origin[i] = ray_in.o;
-      ps.dir[i] = ray_in.d;
+      r->rays.push(ray_in.o, ray_in.d, kInfinity, uint32_t(i));
       ps.beta[i] = beta;
       ps.radiance[i] = Rgb(0);
       ps.bsdf_pdf[i] = pdf;
@@ -80,9 +82,10 @@ Recording* record() {
       ps.flags[i] = flags;
       ps.eta_scale[i] = 1;
       ps.footprint[i] = footprint;
-      ps.material[i] = m;
-      ps.hit[i] = hit;
-      ps.surface[i] = s;
+      r->hits.resize(i + 1);
+      r->hits.material[i] = m;
+      r->hits.hit[i] = hit;
+      r->hits.surface[i] = s;
       ++r->per_type[size_t(m.type)];
       *out_s = s;
       *out_m = m;
@@ -132,8 +135,6 @@ void restore(const PathState& from, PathState& to) {
   to.beta = from.beta;
   to.bsdf_pdf = from.bsdf_pdf;
   to.flags = from.flags;
-  to.origin = from.origin;
-  to.dir = from.dir;
   to.depth = from.depth;
   to.eta_scale = from.eta_scale;
 }
@@ -149,12 +150,12 @@ struct WavefrontShader {
   void shade(const ShadeContext& ctx, size_t begin, size_t end) {
     // Counting sort by material type (done in add_emission_and_queue in the renderer).
     uint32_t counts[kMaterialTypeCount] = {}, first[kMaterialTypeCount + 1] = {};
-    for (size_t i = begin; i < end; ++i) ++counts[int(ctx.paths.material[i].type)];
+    for (size_t i = begin; i < end; ++i) ++counts[int(ctx.hits.material[i].type)];
     for (int t = 0; t < kMaterialTypeCount; ++t) first[t + 1] = first[t] + counts[t];
     uint32_t cursor[kMaterialTypeCount];
     std::copy(first, first + kMaterialTypeCount, cursor);
     queue.resize(end - begin);
-    for (size_t i = begin; i < end; ++i) queue[cursor[int(ctx.paths.material[i].type)]++] = uint32_t(i);
+    for (size_t i = begin; i < end; ++i) queue[cursor[int(ctx.hits.material[i].type)]++] = uint32_t(i);
     [&]<size_t... T>(std::index_sequence<T...>) {
       (shade_queue<MaterialType(T)>(ctx, std::span<const uint32_t>(queue.data() + first[T], counts[T]),
                                     std::get<T>(scratch)),
@@ -168,10 +169,10 @@ struct WavefrontShader {
 void shade_per_hit(const ShadeContext& ctx, uint32_t i, reference::PerHitBsdf& holder) {
   const Scene& scene = ctx.scene;
   PathState& ps = ctx.paths;
-  const SurfaceHit& s = ps.surface[i];
-  const reference::BsdfInterface& b = holder.build(scene, ps.material[i], texture_context(s, ps.footprint[i]));
+  const SurfaceHit& s = ctx.hits.surface[i];
+  const reference::BsdfInterface& b = holder.build(scene, ctx.hits.material[i], texture_context(s, ps.footprint[i]));
   const Frame frame = Frame::from_z(s.ns);
-  const Vec3f wo = -ps.dir[i], wo_local = frame.to_local(wo);
+  const Vec3f wo = -ctx.rays.dir(i), wo_local = frame.to_local(wo);
   const uint32_t px = ps.pixel[i], si = ps.sample[i];
   const uint16_t depth = ps.depth[i];
   if (!scene.lights.empty() && b.has_non_specular()) {
@@ -196,10 +197,8 @@ void shade_per_hit(const ShadeContext& ctx, uint32_t i, reference::PerHitBsdf& h
   BsdfSample bs;
   if (!b.sample(wo_local, ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe)),
                 ctx.sampler.get_2d(px, si, bounce_dim(depth, kDimBsdf)), &bs) ||
-      !(bs.pdf > 0)) {
-    ps.depth[i] = kPathEnded;
-    return;
-  }
+      !(bs.pdf > 0))
+    return;  // the path ends (its depth stays)
   continue_path(ctx, i, frame, wo_local, bs);
 }
 
@@ -208,6 +207,7 @@ enum class Variant { Wavefront, PerHit };
 // Runs one pass of a variant over all recorded hits (in wavefronts); returns the total shadow contribution.
 struct Pass {
   PathState ps;
+  RayQueue next;
   ShadowQueue shadows;
   WavefrontShader wavefront;
   reference::PerHitBsdf holder;
@@ -221,12 +221,13 @@ struct Pass {
     for (size_t begin = 0; begin < n; begin += kWavefront) {
       const size_t end = std::min(n, begin + kWavefront);
       shadows.clear();
-      const ShadeContext ctx{*r.scene, r.settings, r.sampler, ps, shadows};
+      next.clear();
+      const ShadeContext ctx{*r.scene, r.rules, r.sampler, ps, r.rays, r.hits, next, shadows};
       if (v == Variant::Wavefront) wavefront.shade(ctx, begin, end);
       else
         for (size_t i = begin; i < end; ++i) shade_per_hit(ctx, uint32_t(i), holder);
       shadow_rays += shadows.size();
-      for (const Rgb& c : shadows.contribution) contribution += c.g;
+      for (size_t k = 0; k < shadows.size(); ++k) contribution += shadows.contribution[k].g;
     }
   }
 };
@@ -274,14 +275,17 @@ const std::vector<ShadeScratch<typename MaterialTraits<T>::Bsdf>>& captured() {
     auto* out = new std::vector<S>;
     const Recording& r = *record();
     PathState ps = r.recorded;
+    RayQueue next;
     ShadowQueue shadows;
-    const ShadeContext ctx{*r.scene, r.settings, r.sampler, ps, shadows};
+    const ShadeContext ctx{*r.scene, r.rules, r.sampler, ps, r.rays, r.hits, next, shadows};
     std::vector<uint32_t> queue;
     for (size_t begin = 0; begin < ps.size(); begin += kWavefront) {
       queue.clear();
       for (size_t i = begin; i < std::min(ps.size(), begin + kWavefront); ++i)
-        if (ps.material[i].type == T) queue.push_back(uint32_t(i));
+        if (r.hits.material[i].type == T) queue.push_back(uint32_t(i));
       S sc;
+      next.clear();
+      shadows.clear();
       shade_queue<T>(ctx, queue, sc);
       if (!sc.lights.empty()) out->push_back(std::move(sc));
     }

@@ -19,7 +19,7 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "film/image.h"
-#include "render/material_kernels.h"
+#include "material/material_traits.h"
 #include "render/material_resolve.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -91,7 +91,7 @@ class PerHitBsdf {
     using B = typename MaterialTraits<T>::Bsdf;
     static_assert(sizeof(BsdfAdapter<B>) <= sizeof(storage_), "PerHitBsdf storage too small");
     const float scale = opt.scaled_type == T ? opt.scale : 1.0f;
-    live_ = new (storage_) BsdfAdapter<B>(MaterialTraits<T>::bsdf(scene, m.index, tc, TransportMode::Radiance), scale);
+    live_ = new (storage_) BsdfAdapter<B>(MaterialTraits<T>::bsdf(scene.materials, scene.textures, m.index, tc, TransportMode::Radiance), scale);
     return *live_;
   }
   void reset() {

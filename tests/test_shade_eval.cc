@@ -1,7 +1,7 @@
 // Vectorised BSDF evaluation (simd/shade_eval.h) on every Highway target compiled in and supported by this CPU,
 // against the scalar BSDFs (material/lambert.h, oren_nayar.h, conductor.h): random directions on both sides,
 // grazing angles, exactly opposite and equal directions, invalid combinations (opposite hemispheres, smooth
-// conductors), every tail length; and MaterialTraits<T>::eval_batch (gather, kernel, scatter) against the scalar
+// conductors), every tail length; and shade_queue's phase 2 (gather, kernel, scatter) against the scalar
 // loop of shade_queue's phase 2, including conductor queues that mix GGX and Beckmann.
 #include <catch2/catch.hpp>
 #include <hwy/highway.h>  // HWY_TARGETS
@@ -233,19 +233,19 @@ ShadeScratch<Bsdf> make_scratch(Pcg32& rng, size_t hits, Make&& make) {
   return sc;
 }
 
-// eval_batch_simd, and the same through MaterialTraits<T>::eval_batch where the type uses it (what shade_queue
-// calls); both must equal the scalar BSDF.
+// eval_batch_simd, and the same through shade_queue's phase 2 (detail::eval_candidates, which takes the SIMD path
+// where MaterialTraits<T>::kBatchEval says so); both must equal the scalar BSDF.
 template <MaterialType T, class Bsdf>
 int batch_mismatches(ShadeScratch<Bsdf>& sc, std::string* first) {
-  if constexpr (detail::HasEvalBatch<MaterialTraits<T>>) {
-    MaterialTraits<T>::eval_batch(sc);
+  {
+    detail::eval_candidates<T>(sc);
     Mismatch m;
     for (size_t k = 0; k < sc.lights.size(); ++k) {
       const LightCandidate& c = sc.lights[k];
       compare(sc.bsdf[c.slot], sc.wo_local[c.slot], c.wi_local, &sc.f[k].r, sc.pdf[k], m);
     }
     if (m.count) {
-      *first = "through MaterialTraits: " + m.first;
+      *first = "through eval_candidates: " + m.first;
       return m.count;
     }
     for (size_t k = 0; k < sc.lights.size(); ++k) sc.f[k] = Rgb(-1), sc.pdf[k] = -1;
@@ -264,8 +264,9 @@ int batch_mismatches(ShadeScratch<Bsdf>& sc, std::string* first) {
 
 TEST_CASE("eval_batch of Lambert, Oren-Nayar and Conductor equals the scalar phase 2", "[shade_eval][simd]") {
   // The renderer uses the vector path for Oren-Nayar and Conductor only (Lambert: no gain, see shade_eval_batch.h).
-  STATIC_REQUIRE(detail::HasEvalBatch<MaterialTraits<MaterialType::OrenNayar>>);
-  STATIC_REQUIRE(detail::HasEvalBatch<MaterialTraits<MaterialType::Conductor>>);
+  STATIC_REQUIRE(MaterialTraits<MaterialType::OrenNayar>::kBatchEval);
+  STATIC_REQUIRE(MaterialTraits<MaterialType::Conductor>::kBatchEval);
+  STATIC_REQUIRE(!MaterialTraits<MaterialType::Lambert>::kBatchEval);
   for_each_hwy_target(&shade_eval_target_name, [](const std::string&) {
     for (const size_t hits : {size_t(0), size_t(1), size_t(5), size_t(3001)}) {
       Pcg32 rng(hits + 17);

@@ -11,6 +11,7 @@
 #include "material_room.h"
 #include "reference_path_tracer.h"
 #include "render/render.h"
+#include "scene_helpers.h"
 #include "scene/builder.h"
 
 using namespace torte;

@@ -1,4 +1,4 @@
-// Emission sampling for light tracing (instant global illumination's light paths, render/igi.h): a ray leaving
+// Emission sampling for light tracing (instant global illumination's light paths, render/vpl.h): a ray leaving
 // a light, with the weight Le * cos / pdf of having generated it. Reads Light's fields only; the shading-side
 // sampling (sample_light) stays in light.cc.
 #pragma once

@@ -1,9 +1,18 @@
 // Material types and their parameter tables (scene side). The renderer shades hits in wavefronts: hits are
 // counting-sorted by MaterialType and each type's queue is evaluated by one kernel templated on the type (see
-// render/shade.h and render/material_kernels.h), so there is no virtual call per hit. Mix and Bump are not shaded
+// render/shade.h and material/material_traits.h), so there is no virtual call per hit. Mix and Bump are not shaded
 // themselves: render/material_resolve.h turns them into one of the leaf types (and a bumped shading normal)
-// before the sort. Adding a material type = a parameter struct and table here + MaterialTraits in
-// render/material_kernels.h + a line in the kernel dispatch of render/wavefront.cc.
+// before the sort.
+//
+// Adding a shaded material type (everything generic — shading kernels, IGI's VPLs, per-type scratch and queues —
+// follows from the type list):
+//   1. its BSDF value type in material/<name>.h (eval, pdf, sample, has_non_specular; see material/bsdf.h);
+//   2. an enumerator below, before Mix, and a params struct + a vector in MaterialTables;
+//   3. the enumerator in ShadedMaterialTypes (material/material_types.h), in enum order;
+//   4. MaterialTraits<T> in material/material_traits.h (Bsdf, params, bsdf, kSingleLobe, kBatchEval);
+//   5. its description: MaterialDesc fields and the leaf case of MaterialFlattener::add (scene/material_desc.cc),
+//      and the Lua constructor in lua/ that fills them;
+//   6. tests: a furnace/reciprocity test of the BSDF and a render of tests/material_room.h against the reference.
 //
 // Parameters are FloatParam/ColorParam: a constant, or a texture in the scene's TextureTable.
 #pragma once

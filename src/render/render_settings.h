@@ -1,16 +1,78 @@
-// The one validation of RenderSettings. torte.render{} reports a problem under its keyword before the scene is
-// built; render() refuses the same settings with the same rule, for callers that are not Lua.
+// What a render is asked for (RenderSettings, as torte.render{} fills it) and what it reports (RenderStats).
+// Low-level render files include this, not the driver header render.h. Each integrator reads its own parameter
+// block out of RenderSettings (PathSettings, DirectSettings in render/integrator_path.h, IgiSettings in
+// render/integrator_igi.h); the shared stages see only TransportRules (render/path_state.h).
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <string>
 
 #include "camera/camera.h"
-#include "render/render.h"
+#include "film/filter.h"
 
 namespace torte {
 
+enum class IntegratorKind : uint8_t {
+  Path,    // path tracing: next-event estimation + BSDF sampling with MIS, Russian roulette
+  Direct,  // direct lighting only (MIS between light and BSDF sampling); equals Path at max_depth 1
+  Igi,     // instant global illumination (render/integrator_igi.h): Direct plus indirect light from VPLs
+};
+
+// Direct and Igi follow camera paths through specular chains only (the lighting they leave out is reached by
+// light sampling at every vertex, so torte.render{} samples all lights by default for them).
+inline bool ends_after_first_scatter(IntegratorKind k) {
+  return k == IntegratorKind::Direct || k == IntegratorKind::Igi;
+}
+
+// Bounds of what render() accepts: the pixel count (a 16384x16384 image) and the samples per pixel.
+constexpr uint64_t kMaxRenderPixels = uint64_t(1) << 28;
+constexpr int kMaxSpp = 1 << 24;
+
+struct RenderSettings {
+  int width = 512, height = 512;
+  int spp = 16;
+  // Largest number of scattering events on a path: 0 shows emitters only, 1 direct light, ...
+  int max_depth = 64;
+  IntegratorKind integrator = IntegratorKind::Path;
+  uint64_t seed = 0;
+  Filter filter = Filter::box();
+  int rr_depth = 3;                // Russian roulette from this many scattering events on
+  bool sample_all_lights = false;  // one shadow ray per light at every vertex instead of one light by power
+  int tile_size = 16;
+  // Instant global illumination only: see IgiSettings (render/integrator_igi.h) for their meaning.
+  int vpl_sets = 4;
+  int light_paths = 64;
+  float g_limit = 20;
+  float vpl_roulette = 0.25f;
+};
+
+/// What the shared stages need to know about the light transport an integrator wants.
+struct TransportRules {
+  int max_depth = 64;              // scattering events on a path
+  int rr_depth = 3;                // Russian roulette from this many events on
+  bool sample_all_lights = false;  // next-event estimation towards every light instead of one by power
+  bool specular_chains_only = false;  // end at the next hit after the first non-specular event (direct light)
+};
+
+struct RenderStats {
+  uint64_t camera_rays = 0, extension_rays = 0, shadow_rays = 0;
+  uint64_t dropped_samples = 0;  // NaN or infinite radiance, never added to the film
+  uint64_t samples_done = 0;     // camera samples that reached the film (or were dropped)
+  double render_seconds = 0;
+  bool interrupted = false;
+  uint64_t rays() const { return camera_rays + extension_rays + shadow_rays; }
+  void add(const RenderStats& o) {
+    camera_rays += o.camera_rays;
+    extension_rays += o.extension_rays;
+    shadow_rays += o.shadow_rays;
+    dropped_samples += o.dropped_samples;
+    samples_done += o.samples_done;
+  }
+};
+
 /// One invalid setting: `key` names it as torte.render{} does ("spp"), `problem` ends the sentence
-/// ("must be in [1, 16777216], got 0").
+/// ("must be in [1, 16777216], got 0"). The one validation of RenderSettings: torte.render{} reports a problem
+/// under its keyword before the scene is built; render() refuses the same settings with the same rule.
 struct SettingsProblem {
   const char* key;
   std::string problem;
@@ -18,7 +80,7 @@ struct SettingsProblem {
   std::string message() const { return "'" + std::string(key) + "' " + problem; }
 };
 
-/// The first setting of `s` that render() does not accept, or nothing when all are in range.
+/// The first setting of `s` that render() does not accept (the integrators' own ones included), or nothing.
 std::optional<SettingsProblem> find_settings_problem(const RenderSettings& s);
 
 /// Throws torte::Error with the first problem's message, or when `camera` was made for an image size other than

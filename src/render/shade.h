@@ -4,18 +4,20 @@
 //   2. evaluate f and pdf for all light samples at once (MaterialTraits<T>::eval_batch when the type has a
 //      vectorised kernel, else a scalar loop);
 //   3. weight the light samples by MIS and queue the shadow rays;
-//   4. sample the BSDF for each path's next ray and apply Russian roulette.
+//   4. sample the BSDF for each path's next ray and apply Russian roulette; survivors go to the next ray queue.
+// Between 3 and 4 an integrator may look at the queue (OnShaded, e.g. IGI gathers VPL light at the hits).
 // Templated on the material type, so BSDF calls inline and no hit pays a per-hit dispatch.
 #pragma once
 #include <span>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/sampler.h"
-#include "render/material_kernels.h"
+#include "material/material_traits.h"
+#include "render/shade_eval_batch.h"
 #include "render/material_resolve.h"
 #include "render/path_state.h"
-#include "render/render.h"
 
 namespace torte {
 
@@ -38,21 +40,17 @@ inline uint32_t bounce_dim(uint16_t depth, BounceDim d) {
   return kDimFirstBounce + uint32_t(depth) * kDimsPerBounce + d;
 }
 
-// IGI (render/igi.h): a hit that gathers light from the virtual point lights, recorded by shade_queue before
-// phase 4 moves its path on: its slot in the type's queue (for the BSDF and frame in ShadeScratch), the path and
-// the throughput at the hit.
-struct VplHit {
-  uint32_t slot, path;
-  Rgb beta;
-};
-
+/// What a shading kernel reads and writes. Queue entries are slots of `rays` / `hits` (the wavefront being
+/// shaded); paths that go on push their next ray to `next`, in the order they are shaded.
 struct ShadeContext {
   const Scene& scene;
-  const RenderSettings& settings;
+  const TransportRules& rules;
   const Sampler& sampler;
   PathState& paths;
+  const RayQueue& rays;
+  const HitQueue& hits;
+  RayQueue& next;
   ShadowQueue& shadows;
-  std::vector<VplHit>* vpl_hits = nullptr;  // IGI only: receives the hits with a non-specular BSDF
 };
 
 // A light sample waiting for its BSDF evaluation (phase 2) and MIS weighting (phase 3).
@@ -93,46 +91,40 @@ inline void push_shadow_ray(ShadowQueue& shadows, const SurfaceHit& s, Vec3f wi,
   shadows.push(o, wi, t_max, contribution, path);
 }
 
-// Continues path i with the BSDF sample `bs` (drawn in `frame`, wo_local being the path's outgoing direction):
-// checks the sides, updates throughput and flags, applies Russian roulette and sets the next ray. Ends the path
-// (depth = kPathEnded) when it stops here.
-inline void continue_path(const ShadeContext& ctx, uint32_t i, const Frame& frame, Vec3f wo_local,
+// Continues the path of queue slot `slot` with the BSDF sample `bs` (drawn in `frame`, wo_local being the
+// outgoing direction): checks the sides, updates throughput and flags, applies Russian roulette and pushes the
+// next ray to ctx.next. A path that stops here is simply not pushed.
+inline void continue_path(const ShadeContext& ctx, uint32_t slot, const Frame& frame, Vec3f wo_local,
                           const BsdfSample& bs) {
   PathState& ps = ctx.paths;
-  const SurfaceHit& s = ps.surface[i];
+  const uint32_t i = ctx.rays.path[slot];
+  const SurfaceHit& s = ctx.hits.surface[slot];
   const uint16_t depth = ps.depth[i];
   const Vec3f wi = frame.to_world(bs.wi);
-  if (!consistent_sides(s.ng, -ps.dir[i], wi, wo_local, bs.wi)) {
-    ps.depth[i] = kPathEnded;
-    return;
-  }
-  // `direct` follows specular chains only; a non-specular sample just looks for emission at its next hit.
-  uint8_t flags = bs.is_specular() ? kPathSpecular : kPathScattered;
-  if (ends_after_first_scatter(ctx.settings.integrator) && (ps.flags[i] & kPathScattered)) flags |= kPathScattered;
+  if (!consistent_sides(s.ng, -ctx.rays.dir(slot), wi, wo_local, bs.wi)) return;
   Rgb beta = ps.beta[i] * bs.weight();
   if (bs.is_transmission()) ps.eta_scale[i] *= bs.eta * bs.eta;
   // Russian roulette on the throughput without the eta^2 radiance scaling of refraction (pbrt-v4), so paths
   // inside glass are not cut for carrying "too much" radiance; compensated by 1/q (unbiased).
-  if (depth + 1 >= ctx.settings.rr_depth) {
+  if (depth + 1 >= ctx.rules.rr_depth) {
     const float q = std::min(0.95f, (beta * ps.eta_scale[i]).max_component());
-    if (!(ctx.sampler.get_1d(ps.pixel[i], ps.sample[i], bounce_dim(depth, kDimRoulette)) < q)) {
-      ps.depth[i] = kPathEnded;
-      return;
-    }
+    if (!(ctx.sampler.get_1d(ps.pixel[i], ps.sample[i], bounce_dim(depth, kDimRoulette)) < q)) return;
     beta = beta / q;
   }
   ps.beta[i] = beta;
   ps.bsdf_pdf[i] = bs.pdf;
-  ps.flags[i] = flags;
-  ps.origin[i] = offset_origin(s.p, s.ng, wi);
-  ps.dir[i] = wi;
+  ps.flags[i] = bs.is_specular() ? kPathSpecular : kPathScattered;
   ps.depth[i] = uint16_t(depth + 1);
+  ctx.next.push(offset_origin(s.p, s.ng, wi), wi, kInfinity, i);
 }
 
-namespace detail {
+/// The OnShaded hook of integrators that need none.
+struct NoShadeHook {
+  template <class Scratch>
+  void operator()(const Scratch&, std::span<const uint32_t>) const {}
+};
 
-template <class Traits>
-concept HasEvalBatch = requires { &Traits::eval_batch; };
+namespace detail {
 
 // Phase 2: f and pdf for every light candidate.
 template <MaterialType T, class Bsdf>
@@ -140,8 +132,8 @@ void eval_candidates(ShadeScratch<Bsdf>& sc) {
   const size_t n = sc.lights.size();
   sc.f.resize(n);
   sc.pdf.resize(n);
-  if constexpr (HasEvalBatch<MaterialTraits<T>>) {
-    MaterialTraits<T>::eval_batch(sc);
+  if constexpr (MaterialTraits<T>::kBatchEval) {
+    eval_batch_simd(sc);
   } else {
     for (size_t k = 0; k < n; ++k) {
       const LightCandidate& c = sc.lights[k];
@@ -164,12 +156,12 @@ inline void add_candidate(const ShadeContext& ctx, std::vector<LightCandidate>& 
 
 }  // namespace detail
 
-// Shades the paths in `queue` (all resolved to material type T). Paths that end get depth kPathEnded.
-template <MaterialType T>
+// Shades the queue slots in `queue` (all resolved to material type T); on_shaded(sc, queue) runs after the light
+// samples are queued and before the paths move on (sc then holds every slot's BSDF, frame and local wo).
+template <MaterialType T, class OnShaded = NoShadeHook>
 void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
-                 ShadeScratch<typename MaterialTraits<T>::Bsdf>& sc) {
+                 ShadeScratch<typename MaterialTraits<T>::Bsdf>& sc, OnShaded&& on_shaded = {}) {
   using Traits = MaterialTraits<T>;
-  using Bsdf = typename Traits::Bsdf;
   const Scene& scene = ctx.scene;
   PathState& ps = ctx.paths;
   const size_t n = queue.size();
@@ -180,16 +172,17 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
 
   // Phase 1: BSDFs and light samples.
   for (size_t k = 0; k < n; ++k) {
-    const uint32_t i = queue[k];
-    const SurfaceHit& s = ps.surface[i];
+    const uint32_t slot = queue[k], i = ctx.rays.path[slot];
+    const SurfaceHit& s = ctx.hits.surface[slot];
     const TextureContext tc = texture_context(s, ps.footprint[i]);
-    sc.bsdf.push_back(Traits::bsdf(scene, ps.material[i].index, tc, TransportMode::Radiance));
+    sc.bsdf.push_back(
+        Traits::bsdf(scene.materials, scene.textures, ctx.hits.material[slot].index, tc, TransportMode::Radiance));
     sc.frame[k] = Frame::from_z(s.ns);
-    const Vec3f wo = -ps.dir[i];
+    const Vec3f wo = -ctx.rays.dir(slot);
     sc.wo_local[k] = sc.frame[k].to_local(wo);
     if (scene.lights.empty() || !sc.bsdf.back().has_non_specular()) continue;
     const uint32_t px = ps.pixel[i], si = ps.sample[i];
-    if (ctx.settings.sample_all_lights) {
+    if (ctx.rules.sample_all_lights) {
       for (size_t l = 0; l < scene.lights.size(); ++l) {
         const Vec2f u = ctx.sampler.get_2d(px, si, kDimAllLightsBase + uint32_t(ps.depth[i]) * 4096 + uint32_t(l));
         detail::add_candidate(ctx, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], 1,
@@ -213,34 +206,27 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
     const LightCandidate& c = sc.lights[k];
     const Rgb f = sc.f[k] * std::fabs(c.wi_local.z);
     if (f.is_black() || !(c.light_pdf > 0)) continue;
-    const uint32_t i = queue[c.slot];
+    const uint32_t slot = queue[c.slot], i = ctx.rays.path[slot];
     const float weight = c.delta ? 1.0f : power_heuristic(1, c.light_pdf, 1, sc.pdf[k]);
     const Rgb contribution = ps.beta[i] * f * c.radiance * (weight / c.light_pdf);
     if (contribution.is_black()) continue;
-    push_shadow_ray(ctx.shadows, ps.surface[i], c.wi, c.distance, contribution, i);
+    push_shadow_ray(ctx.shadows, ctx.hits.surface[slot], c.wi, c.distance, contribution, i);
   }
 
-  // IGI: the hits that gather VPL light (every hit shaded here is a first non-specular one: igi, like direct,
-  // ends paths after they scatter). igi.h gathers after shading, with the BSDFs and frames left in `sc`.
-  if (ctx.vpl_hits)
-    for (size_t k = 0; k < n; ++k)
-      if (sc.bsdf[k].has_non_specular()) ctx.vpl_hits->push_back({uint32_t(k), queue[k], ps.beta[queue[k]]});
+  on_shaded(std::as_const(sc), queue);
 
   // Phase 4: BSDF sampling for the paths' next rays.
   for (size_t k = 0; k < n; ++k) {
-    const uint32_t i = queue[k];
+    const uint32_t slot = queue[k], i = ctx.rays.path[slot];
     const uint16_t depth = ps.depth[i];
     const uint32_t px = ps.pixel[i], si = ps.sample[i];
     BsdfSample bs;
     // Single-lobe models ignore the lobe sample: do not pay for a sampler dimension they do not read.
-    constexpr bool kSingleLobe = std::is_same_v<Bsdf, LambertBsdf> || std::is_same_v<Bsdf, OrenNayarBsdf>;
-    const float uc = kSingleLobe ? 0.5f : ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe));
+    const float uc = Traits::kSingleLobe ? 0.5f : ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe));
     if (!sc.bsdf[k].sample(sc.wo_local[k], uc, ctx.sampler.get_2d(px, si, bounce_dim(depth, kDimBsdf)), &bs) ||
-        !(bs.pdf > 0)) {
-      ps.depth[i] = kPathEnded;
-      continue;
-    }
-    continue_path(ctx, i, sc.frame[k], sc.wo_local[k], bs);
+        !(bs.pdf > 0))
+      continue;  // the path ends
+    continue_path(ctx, slot, sc.frame[k], sc.wo_local[k], bs);
   }
 }
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "render/material_kernels.h"
+#include "material/material_traits.h"
 #include "render/shade.h"
 #include "shade_eval.h"
 
@@ -135,9 +135,5 @@ void eval_batch_simd(ShadeScratch<ConductorBsdf>& sc) {
     sc.pdf[k] = pdf_out[j];
   }
 }
-
-// The types whose vector path pays (bench/RESULTS.md, "Shading"); Lambert keeps the scalar loop of shade.h.
-void MaterialTraits<MaterialType::OrenNayar>::eval_batch(ShadeScratch<OrenNayarBsdf>& sc) { eval_batch_simd(sc); }
-void MaterialTraits<MaterialType::Conductor>::eval_batch(ShadeScratch<ConductorBsdf>& sc) { eval_batch_simd(sc); }
 
 }  // namespace torte

@@ -3,7 +3,7 @@
 // candidate, equal to the scalar BSDFs' to a few ulps (tests/test_shade_eval.cc). Defined in
 // render/shade_eval_batch.cc; one call per queue, not per hit, so the out-of-line call costs nothing.
 //
-// Which types use it (MaterialTraits<T>::eval_batch in render/material_kernels.h forwards here) follows the
+// Which types use it (MaterialTraits<T>::kBatchEval in material/material_traits.h) follows the
 // measurements in bench/RESULTS.md, "Shading" (phase 2 alone, gather included, AVX2):
 //   Conductor (GGX):  about 3x the scalar loop (the kernel alone 8x; the gather of 14 floats per candidate is
 //                     most of the rest): used. Beckmann candidates are evaluated by the scalar BSDF inside the batch.

@@ -1,76 +1,95 @@
-// Renders a batch of camera samples as wavefronts: trace all rays, add emission, counting-sort the hits by
-// material type, run one shading kernel per type, trace the shadow rays, repeat with the surviving paths.
+// The wavefront loop shared by the camera-path integrators: generate camera rays, then per bounce trace, sort
+// the hits (escaped light, emission, materials), shade per material type, trace the shadow rays; finally add the
+// paths to the film. An integrator is a Hook (static: no virtual call per ray or hit) that may look at each
+// shaded queue (IGI records the hits that gather from its VPLs) and act after each bounce's shadow rays.
 #pragma once
 #include <cstdint>
-#include <tuple>
-#include <utility>
+#include <span>
 #include <vector>
 
 #include "camera/camera.h"
 #include "core/sampler.h"
+#include "film/film.h"
+#include "material/material_types.h"
 #include "render/path_state.h"
-#include "render/render.h"
+#include "render/render_settings.h"
 #include "render/shade.h"
+#include "render/stage_camera.h"
+#include "render/stage_film.h"
+#include "render/stage_hits.h"
+#include "render/stage_trace.h"
 
 namespace torte {
 
-struct VplStore;  // render/igi.h
-
-struct SampleRequest {
-  uint32_t pixel;   // linear index
-  uint32_t sample;  // index within the pixel
+/// The Hook of integrators that add nothing to the shared stages (path, direct).
+struct NoWavefrontHook {
+  template <class Tag, class Scratch>
+  void shaded(Tag, const Scratch&, std::span<const uint32_t>) {}
+  template <class W>
+  void after_bounce(W&, RenderStats&) {}
 };
 
-// Accumulated film values of one pixel: sum of weight * L and sum of weights.
-struct PixelSum {
-  Rgb weighted;
-  float weight = 0;
-};
-
-class WavefrontRenderer {
+class Wavefront {
  public:
-  // `vpls` (IntegratorKind::Igi only, else null): the virtual point lights camera hits gather from.
-  WavefrontRenderer(const Scene& scene, const Camera& camera, const RenderSettings& settings, const Sampler& sampler,
-                    const VplStore* vpls = nullptr)
-      : scene_(scene), camera_(camera), settings_(settings), sampler_(sampler), vpls_(vpls) {}
-  // Renders the requested samples and adds them to film (indexed by pixel). Counts rays and dropped samples.
-  void render(const std::vector<SampleRequest>& requests, std::vector<PixelSum>& film, RenderStats& stats);
+  template <MaterialType T>
+  using Scratch = ShadeScratch<typename MaterialTraits<T>::Bsdf>;
+
+  /// `camera` must be made for the image size of `image`; all references must outlive the wavefront.
+  Wavefront(const Scene& scene, const Camera& camera, const RenderSettings& image, const Sampler& sampler,
+            const TransportRules& rules)
+      : scene_(scene), camera_(camera), image_(image), sampler_(sampler), rules_(rules) {}
+
+  /// Renders the requested camera samples and adds them to the film; counts rays and dropped samples.
+  template <class Hook = NoWavefrontHook>
+  void render(std::span<const SampleRequest> requests, Film& film, RenderStats& stats, Hook&& hook = {});
+
+  // For hooks: the state of the bounce being rendered.
+  const Scene& scene() const { return scene_; }
+  PathState& paths() { return paths_; }
+  const RayQueue& rays() const { return rays_; }
+  const HitQueue& hits() const { return hits_; }
+  template <MaterialType T>
+  const Scratch<T>& scratch() const { return std::get<int(T)>(scratch_); }
+  std::vector<uint8_t>& occluded_scratch() { return occluded_; }
 
  private:
-  void generate_camera_rays(const std::vector<SampleRequest>& requests);
-  void trace(RenderStats& stats);
-  void add_emission_and_queue(RenderStats& stats);
-  void shade();
-  void trace_shadows(RenderStats& stats, bool coherent = false);
-  void gather_vpls(RenderStats& stats);  // IGI: VPL light at the hits shade() recorded, traced in batches
-  void compact();
-
   const Scene& scene_;
   const Camera& camera_;
-  const RenderSettings& settings_;
+  const RenderSettings& image_;
   const Sampler& sampler_;
-  const VplStore* vpls_;
-  std::vector<VplHit> vpl_hits_;                          // IGI: hits recorded by shade(), grouped by type
-  size_t vpl_hits_end_[kShadedMaterialTypeCount] = {};   // end of each type's group in vpl_hits_
-  std::vector<uint32_t> vpl_order_;                       // IGI: gather scratch
-  int max_depth_ = 0;
-  float spread_ = 0;  // camera ray-cone spread angle
+  TransportRules rules_;
   PathState paths_;
+  RayQueue rays_, next_;  // this bounce's rays, the next bounce's (swapped after each bounce)
+  HitQueue hits_;
+  MaterialQueues queues_;
   ShadowQueue shadows_;
-  // Gathers the rays of `paths` (indices into paths_ or, for shadows, the shadow queue) into SoA arrays.
-  template <class RayOf>
-  RaySoA gather_rays(size_t count, RayOf&& ray_of);
-  std::vector<uint32_t> active_;                   // paths still going
-  std::vector<float> ray_buf_[7];                  // ox, oy, oz, dx, dy, dz, t_max for the trace kernels
-  std::vector<Hit> hit_buf_;
-  std::vector<uint8_t> occluded_buf_;
-  std::vector<uint32_t> material_queue_;           // active hits sorted by material type
-  uint32_t queue_begin_[kMaterialTypeCount + 1] = {};
-  // Shading scratch, one per shaded material type (index = MaterialType).
-  template <size_t... T>
-  static auto make_scratch(std::index_sequence<T...>)
-      -> std::tuple<ShadeScratch<typename MaterialTraits<MaterialType(T)>::Bsdf>...>;
-  decltype(make_scratch(std::make_index_sequence<kShadedMaterialTypeCount>{})) scratch_;
+  std::vector<uint8_t> occluded_;
+  PerShadedType<Scratch> scratch_;  // shading scratch, one per shaded material type
 };
+
+template <class Hook>
+void Wavefront::render(std::span<const SampleRequest> requests, Film& film, RenderStats& stats, Hook&& hook) {
+  generate_camera_rays(requests, camera_, image_.filter, image_.width, image_.height, sampler_, paths_, rays_);
+  stats.camera_rays += requests.size();
+  const float spread = camera_.spread_angle();
+  for (int bounce = 0; rays_.size() != 0; ++bounce) {
+    // Camera rays of a tile come pixel by pixel, neighbours next to each other: trace them as packets. Bounced
+    // rays are incoherent and go one at a time. Camera rays were counted when generated.
+    trace_rays(scene_, rays_, hits_, bounce == 0);
+    if (bounce != 0) stats.extension_rays += rays_.size();
+    sort_hits(scene_, rules_, sampler_, spread, rays_, hits_, paths_, queues_);
+    next_.clear();
+    shadows_.clear();
+    const ShadeContext ctx{scene_, rules_, sampler_, paths_, rays_, hits_, next_, shadows_};
+    for_each_shaded_type([&](auto t) {
+      shade_queue<t()>(ctx, queues_.queue(t()), std::get<int(t())>(scratch_),
+                       [&](const auto& sc, std::span<const uint32_t> q) { hook.shaded(t, sc, q); });
+    });
+    trace_shadows(scene_, shadows_, paths_, occluded_, stats);
+    hook.after_bounce(*this, stats);
+    std::swap(rays_, next_);
+  }
+  accumulate_samples(paths_, film, stats);
+}
 
 }  // namespace torte

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "material/material_traits.h"
 
 namespace torte {
 
@@ -96,33 +97,30 @@ MaterialRef MaterialFlattener::add(const MaterialDesc& d, int level) {
   // Materials made by make_mix/make_bump never get here too deep; this bounds the recursion for any other.
   if (level > kMaxMaterialNesting) throw Error(nesting_error(level));
   MaterialRef ref;
+  // The parameter row of a shaded (leaf) type, from the description's fields.
+  auto leaf_params = [&](auto t) {
+    constexpr MaterialType T = t();
+    if constexpr (T == MaterialType::Lambert) return LambertParams{textures_.add(d.color)};
+    if constexpr (T == MaterialType::OrenNayar) return OrenNayarParams{textures_.add(d.color), textures_.add(d.sigma)};
+    if constexpr (T == MaterialType::Mirror) return MirrorParams{textures_.add(d.color)};
+    if constexpr (T == MaterialType::Conductor)
+      return ConductorParams{textures_.add(d.eta_rgb), textures_.add(d.k), roughness(d.roughness)};
+    if constexpr (T == MaterialType::Dielectric)
+      return DielectricParams{textures_.add(d.eta), roughness(d.roughness), textures_.add(d.color),
+                              textures_.add(d.transmit_color)};
+    if constexpr (T == MaterialType::ThinDielectric)
+      return ThinDielectricParams{textures_.add(d.eta), textures_.add(d.color), textures_.add(d.transmit_color)};
+    if constexpr (T == MaterialType::CoatedDiffuse)
+      return CoatedDiffuseParams{textures_.add(d.color), textures_.add(d.eta), roughness(d.roughness)};
+  };
+  const bool leaf = dispatch_shaded(d.type, [&](auto t) {
+    ref = push(MaterialTraits<t()>::params(tables_), d.type, leaf_params(t));
+  });
+  if (leaf) {
+    refs_.emplace(&d, ref);
+    return ref;
+  }
   switch (d.type) {
-    case MaterialType::Lambert:
-      ref = push(tables_.lambert, d.type, LambertParams{textures_.add(d.color)});
-      break;
-    case MaterialType::OrenNayar:
-      ref = push(tables_.oren_nayar, d.type, OrenNayarParams{textures_.add(d.color), textures_.add(d.sigma)});
-      break;
-    case MaterialType::Mirror:
-      ref = push(tables_.mirror, d.type, MirrorParams{textures_.add(d.color)});
-      break;
-    case MaterialType::Conductor:
-      ref = push(tables_.conductor, d.type,
-                 ConductorParams{textures_.add(d.eta_rgb), textures_.add(d.k), roughness(d.roughness)});
-      break;
-    case MaterialType::Dielectric:
-      ref = push(tables_.dielectric, d.type,
-                 DielectricParams{textures_.add(d.eta), roughness(d.roughness), textures_.add(d.color),
-                                  textures_.add(d.transmit_color)});
-      break;
-    case MaterialType::ThinDielectric:
-      ref = push(tables_.thin_dielectric, d.type,
-                 ThinDielectricParams{textures_.add(d.eta), textures_.add(d.color), textures_.add(d.transmit_color)});
-      break;
-    case MaterialType::CoatedDiffuse:
-      ref = push(tables_.coated_diffuse, d.type,
-                 CoatedDiffuseParams{textures_.add(d.color), textures_.add(d.eta), roughness(d.roughness)});
-      break;
     case MaterialType::Mix: {
       if (!d.a || !d.b) throw Error("internal: mix material without both materials");
       MixParams p{textures_.add(d.amount), add(*d.a, level + 1), add(*d.b, level + 1)};
@@ -135,7 +133,7 @@ MaterialRef MaterialFlattener::add(const MaterialDesc& d, int level) {
       ref = push(tables_.bump, d.type, p);
       break;
     }
-    case MaterialType::Count: throw Error("internal: invalid material type");
+    default: throw Error("internal: invalid material type");
   }
   refs_.emplace(&d, ref);
   return ref;

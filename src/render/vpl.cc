@@ -1,4 +1,4 @@
-#include "render/igi.h"
+#include "render/vpl.h"
 
 #include <tbb/parallel_for.h>
 
@@ -12,9 +12,9 @@ namespace torte {
 
 namespace {
 
-// Light paths draw from the same stateless sampler as camera paths, under "pixel" indices no image reaches
-// (images have fewer than 2^28 pixels): set s is pixel kVplPixelBase + s, path j its sample j, so the paths of a
-// set are stratified (Sobol) in their first dimensions.
+// Light paths draw from a stateless sampler of their family (seeded from the render's seed and the family),
+// under "pixel" indices no image reaches (images have fewer than 2^28 pixels): set s is pixel
+// kVplPixelBase + s, path j its sample j, so the paths of a set are stratified (Sobol) in their first dimensions.
 constexpr uint32_t kVplPixelBase = 0xf0000000u;
 enum LightPathDim : uint32_t { kDimLpLight = 0, kDimLpPosition = 1, kDimLpDirection = 2, kDimLpFirstBounce = 3 };
 enum LightBounceDim : uint32_t { kDimLpMix = 0, kDimLpLobe = 1, kDimLpBsdf = 2, kDimLpRoulette = 3, kDimsLpBounce = 4 };
@@ -30,19 +30,12 @@ struct RawVpl {
   MaterialRef material;
 };
 
-// Calls fn(std::integral_constant<int, T>, bsdf) with the BSDF of leaf material m (type T) at tc: one switch.
-template <class Fn, size_t... T>
-void with_bsdf_impl(const Scene& scene, MaterialRef m, const TextureContext& tc, TransportMode mode, Fn& fn,
-                    std::index_sequence<T...>) {
-  (void)((m.type == MaterialType(T) &&
-          (fn(std::integral_constant<int, int(T)>{},
-              MaterialTraits<MaterialType(T)>::bsdf(scene, m.index, tc, mode)),
-           true)) ||
-         ...);
-}
+// Calls fn(MaterialTypeTag<T>, bsdf) with the BSDF of leaf material m (type T) at tc: one dispatch.
 template <class Fn>
 void with_bsdf(const Scene& scene, MaterialRef m, const TextureContext& tc, TransportMode mode, Fn&& fn) {
-  with_bsdf_impl(scene, m, tc, mode, fn, std::make_index_sequence<kShadedMaterialTypeCount>{});
+  dispatch_shaded(m.type, [&](auto t) {
+    fn(t, MaterialTraits<t()>::bsdf(scene.materials, scene.textures, m.index, tc, mode));
+  });
 }
 
 // Traces light path `j` of set `set`, appending its VPLs to `out`; returns the number of rays traced.
@@ -116,21 +109,28 @@ uint64_t trace_light_path(const Scene& scene, const RenderSettings& settings, co
 
 }  // namespace
 
-VplStore generate_vpls(const Scene& scene, const RenderSettings& settings) {
+VplStore generate_vpls(const Scene& scene, const RenderSettings& settings, uint32_t first_family, int families) {
   VplStore store;
-  const int sets = settings.vpl_sets;
+  store.sets = settings.vpl_sets;
+  store.first_family = first_family;
+  const int sets = settings.vpl_sets * families;  // all sets of all families, family-major
   const float r = scene.radius();
   store.g_max = r > 0 ? settings.g_limit / (r * r) : kInfinity;
   store.set_begin.assign(size_t(sets) + 1, 0);
   if (scene.lights.empty() || settings.max_depth < 2) return store;
 
-  // Sets are independent: trace them in parallel into their own arrays, then concatenate in set order.
-  const Sampler sampler(settings.seed);
+  // Sets are independent: trace them in parallel into their own arrays, then concatenate in set order. Each
+  // family has its own sampler seed, so families are independent draws.
+  std::vector<Sampler> samplers;
+  for (int f = 0; f < families; ++f)
+    samplers.emplace_back(mix_bits(settings.seed ^ (uint64_t(first_family + uint32_t(f)) + 1) * 0x9e3779b97f4a7c15ull));
   std::vector<std::vector<RawVpl>> raw(static_cast<size_t>(sets));
   std::vector<uint64_t> rays(static_cast<size_t>(sets), 0);
   tbb::parallel_for(0, sets, [&](int set) {
+    const Sampler& sampler = samplers[size_t(set / settings.vpl_sets)];
     for (uint32_t j = 0; j < uint32_t(settings.light_paths); ++j)
-      rays[size_t(set)] += trace_light_path(scene, settings, sampler, set, j, raw[size_t(set)]);
+      rays[size_t(set)] +=
+          trace_light_path(scene, settings, sampler, set % settings.vpl_sets, j, raw[size_t(set)]);
   });
 
   size_t total = 0;
@@ -151,7 +151,7 @@ VplStore generate_vpls(const Scene& scene, const RenderSettings& settings) {
       store.material.push_back(v.material);
       // The same texture context as at generation: the same BSDF.
       with_bsdf(scene, v.material, texture_context(v.s, 0), TransportMode::Importance, [&](auto t, const auto& b) {
-        auto& array = std::get<decltype(t)::value>(store.bsdfs);
+        auto& array = std::get<int(t())>(store.bsdfs);
         store.bsdf.push_back(uint32_t(array.size()));
         array.push_back(b);
       });

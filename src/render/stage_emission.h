@@ -1,0 +1,53 @@
+// Stages: light found by the path's own rays, weighted by MIS against the light-sampling strategy that could
+// have found it: escaped rays (infinite lights) and hits on emitting surfaces (area lights, emitting voxel faces
+// and cell shapes).
+#pragma once
+#include <cstdint>
+
+#include "light/light.h"
+#include "render/path_state.h"
+
+namespace torte {
+
+// MIS weight of emission found by BSDF sampling on path i (light `light_index` of pdf `light_pdf` for the ray).
+inline float emission_weight(const Scene& scene, const PathState& ps, const TransportRules& rules, uint32_t i,
+                             int light_index, float light_pdf) {
+  // Seen by the camera or through a delta lobe: no light sampling competes.
+  if (ps.depth[i] == 0 || (ps.flags[i] & kPathSpecular)) return 1.0f;
+  const float pmf = rules.sample_all_lights ? 1.0f : scene.light_selection.pmf(light_index);
+  return power_heuristic(1, ps.bsdf_pdf[i], 1, pmf * light_pdf);
+}
+
+/// Adds the radiance of the infinite lights seen along escaped ray (o, d) to path i.
+inline void add_escaped_radiance(const Scene& scene, const TransportRules& rules, PathState& ps, uint32_t i, Vec3f o,
+                                 Vec3f d) {
+  for (size_t l = 0; l < scene.lights.size(); ++l) {
+    const Light& light = scene.lights[l];
+    if (!is_infinite_light(light)) continue;
+    const Rgb le = escaped_radiance(light, d);
+    if (le.is_black()) continue;
+    const float w = emission_weight(scene, ps, rules, i, int(l), light_pdf(scene, light, o, d, nullptr, kInfinity));
+    ps.radiance[i] += ps.beta[i] * le * w;
+  }
+}
+
+/// Adds the emission of surface `s` (hit at distance t along (o, d)) to path i.
+inline void add_surface_emission(const Scene& scene, const TransportRules& rules, PathState& ps, uint32_t i, Vec3f o,
+                                 Vec3f d, const SurfaceHit& s, float t) {
+  const SceneObject& object = scene.objects[s.object];
+  if (object.area_light >= 0) {
+    const Light& light = scene.lights[size_t(object.area_light)];
+    const Rgb le = area_emission(light, s, d);
+    if (!le.is_black()) {
+      const float w = emission_weight(scene, ps, rules, i, object.area_light, light_pdf(scene, light, o, d, &s, t));
+      ps.radiance[i] += ps.beta[i] * le * w;
+    }
+  } else if (const SurfaceEmission* e = patch_emission(scene, s); e && (e->two_sided || dot(s.ng, d) < 0)) {
+    // An emitting voxel face or cell shape (a Patches light).
+    const Light& light = scene.lights[size_t(e->light)];
+    const float w = emission_weight(scene, ps, rules, i, e->light, light_pdf(scene, light, o, d, &s, t));
+    ps.radiance[i] += ps.beta[i] * e->radiance * w;
+  }
+}
+
+}  // namespace torte

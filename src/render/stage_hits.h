@@ -1,0 +1,28 @@
+// Stage: from trace results to shading queues. Escaped rays and emitters add their light (stage_emission.h);
+// paths that go on get their surface reconstructed and their material resolved (Mix, Bump), and their queue
+// slots are counting-sorted by material type into one contiguous queue per type.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/sampler.h"
+#include "render/path_state.h"
+
+namespace torte {
+
+/// Queue slots grouped by material type.
+struct MaterialQueues {
+  std::vector<uint32_t> slots;
+  uint32_t begin[kMaterialTypeCount + 1] = {};
+  std::vector<uint32_t> unsorted;  // scratch
+  std::span<const uint32_t> queue(MaterialType t) const {
+    return {slots.data() + begin[int(t)], begin[int(t) + 1] - begin[int(t)]};
+  }
+};
+
+/// Processes the hits of `rays`; `spread` is the camera's ray-cone spread angle.
+void sort_hits(const Scene& scene, const TransportRules& rules, const Sampler& sampler, float spread,
+               const RayQueue& rays, HitQueue& hits, PathState& paths, MaterialQueues& out);
+
+}  // namespace torte

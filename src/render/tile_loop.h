@@ -1,0 +1,90 @@
+// Progressive passes over image tiles (TBB), shared by every camera-path integrator. A Driver provides:
+//   void begin_pass(int first_sample, int pass_spp);  // serial, before the pass (IGI draws its VPLs here)
+//   std::unique_ptr<Worker> make_worker();             // one per thread; Worker::render(requests, film, stats)
+//   void finish(RenderStats&);                          // adds the driver's own counts (e.g. light-path rays)
+#pragma once
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "film/film.h"
+#include "render/render.h"
+#include "render/stage_camera.h"
+
+namespace torte {
+
+namespace detail {
+struct Tile {
+  int x0, y0, x1, y1;
+};
+std::vector<Tile> make_tiles(int width, int height, int size);
+// Samples per pixel in each progressive pass: small first passes give an early full-frame image (and something
+// to write if the render is interrupted), later ones keep wavefront batches large.
+std::vector<int> make_passes(int spp);
+// The first image texture that failed to read ("" if none): the render then stops and fails naming the file.
+std::string texture_failure(const Scene& scene);
+}  // namespace detail
+
+template <class Driver>
+RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Driver& driver, ProgressSink* progress,
+                       const std::atomic<bool>* cancel) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<detail::Tile> tiles = detail::make_tiles(settings.width, settings.height, settings.tile_size);
+  Film film(settings.width, settings.height);
+  using Worker = typename decltype(driver.make_worker())::element_type;
+  struct Slot {
+    std::unique_ptr<Worker> worker;
+    std::vector<SampleRequest> requests;
+    RenderStats stats;
+  };
+  tbb::enumerable_thread_specific<Slot> slots;
+  std::atomic<uint64_t> samples_done{0}, rays_done{0};
+  const uint64_t samples_total = uint64_t(settings.width) * settings.height * settings.spp;
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
+  const bool has_images = !scene.textures.images().empty();
+  auto texture_failed = [&] { return has_images && !detail::texture_failure(scene).empty(); };
+
+  int first_sample = 0;
+  for (const int pass_spp : detail::make_passes(settings.spp)) {
+    if (cancelled() || texture_failed()) break;
+    driver.begin_pass(first_sample, pass_spp);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+      Slot& w = slots.local();
+      if (!w.worker) w.worker = driver.make_worker();
+      for (size_t t = range.begin(); t != range.end(); ++t) {
+        if (cancelled() || texture_failed()) return;
+        const detail::Tile& tile = tiles[t];
+        w.requests.clear();
+        for (int y = tile.y0; y < tile.y1; ++y)
+          for (int x = tile.x0; x < tile.x1; ++x)
+            for (int s = first_sample; s < first_sample + pass_spp; ++s)
+              w.requests.push_back({uint32_t(y) * uint32_t(settings.width) + uint32_t(x), uint32_t(s)});
+        const uint64_t rays_before = w.stats.rays();
+        w.worker->render(w.requests, film, w.stats);
+        const uint64_t done = samples_done += w.requests.size();
+        const uint64_t rays = rays_done += w.stats.rays() - rays_before;
+        if (progress) progress->update(done, samples_total, rays, elapsed());
+      }
+    }, tbb::simple_partitioner());
+    first_sample += pass_spp;
+  }
+
+  if (const std::string failure = detail::texture_failure(scene); !failure.empty()) throw Error(failure);
+  RenderOutput out;
+  for (const Slot& w : slots) out.stats.add(w.stats);
+  driver.finish(out.stats);
+  out.stats.interrupted = cancelled() && out.stats.samples_done < samples_total;
+  out.image = film.image();
+  out.stats.render_seconds = elapsed();
+  return out;
+}
+
+}  // namespace torte
