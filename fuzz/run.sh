@@ -38,7 +38,7 @@ for h in "$@"; do
   echo "fuzz: $h for ${seconds}s (log: $log)" >&2
   start=$(date +%s)
   # shellcheck disable=SC2086
-  UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1} nice -n 10 "$bin" "${flags[@]}" ${FUZZ_ARGS:-} "${inputs[@]}" > "$log" 2>&1
+  UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1} nice -n "${FUZZ_NICE:-5}" "$bin" "${flags[@]}" ${FUZZ_ARGS:-} "${inputs[@]}" > "$log" 2>&1
   rc=$?
   elapsed=$(( $(date +%s) - start ))
   new=$(find "$artifacts" -type f -newer "$marker" | sort)

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian packages torte needs, and only those that are missing (idempotent).
-# Usage: scripts/install-deps.sh [--bench]   (--bench adds Embree for bench/embree-compare)
+# Usage: scripts/install-deps.sh [--bench | --fuzz]   (--bench adds Embree for bench/embree-compare, --fuzz
+# clang's libFuzzer and sanitizer runtimes for `make fuzz`)
 set -euo pipefail
 packages=(cmake clang g++ make pkg-config ninja-build libhwy-dev libtbb-dev libopenimageio-dev liblua5.4-dev
           libbenchmark-dev catch2 zlib1g-dev liblz4-dev libxxhash-dev
           openimageio-tools)  # OIIO's CMake config checks that /usr/bin/iconvert etc. exist
 if [[ "${1:-}" == "--bench" ]]; then packages+=(libembree-dev); fi
+if [[ "${1:-}" == "--fuzz" ]]; then packages+=(libclang-rt-14-dev); fi
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then missing+=("$p"); fi
