@@ -159,7 +159,10 @@ void check_texture_size(const std::string& path, const OIIO::ImageSpec& spec) {
   const uint64_t texels = std::max(checked_bytes(uint64_t(spec.width), uint64_t(spec.height), what),
                                    checked_bytes(uint64_t(std::max(spec.tile_width, 0)),
                                                  uint64_t(std::max(spec.tile_height, 0)), what));
-  const uint64_t bytes = checked_bytes(texels, uint64_t(spec.nchannels) * spec.format.size(), what);
+  // Per texel: the cached tile, the reader's buffer of the same size and a float copy when it converts (OpenImageIO
+  // 2.4 was seen past 13 bytes per 8-bit RGB texel; 4/3 of the file's own size let a 19791880x8 BMP reach 2 GB).
+  const uint64_t per_texel = 2 * uint64_t(spec.nchannels) * spec.format.size() + 4 * uint64_t(spec.nchannels);
+  const uint64_t bytes = checked_bytes(texels, per_texel, what);
   reserve_memory(bytes > UINT64_MAX / 2 ? UINT64_MAX : bytes + bytes / 3, what);
 }
 
