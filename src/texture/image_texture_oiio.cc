@@ -155,10 +155,11 @@ void check_texture_size(const std::string& path, const OIIO::ImageSpec& spec) {
     throw Error("cannot read " + what + ": the header declares no pixels");
   if (spec.depth > 1) throw Error("cannot read " + what + ": volume images (depth " + std::to_string(spec.depth) +
                                   ") are not supported");
-  // A tiled file's cache unit is a tile, and a header may declare tiles far larger than the image.
-  const uint64_t texels = std::max(checked_bytes(uint64_t(spec.width), uint64_t(spec.height), what),
-                                   checked_bytes(uint64_t(std::max(spec.tile_width, 0)),
-                                                 uint64_t(std::max(spec.tile_height, 0)), what));
+  // A tiled file's cache unit is a tile, and a header may declare tiles far larger than the image; the cache's
+  // MIP levels of an untiled file follow the display window (OpenEXR's displayWindow), which may dwarf the pixels.
+  const auto area = [&](int w, int h) { return checked_bytes(uint64_t(std::max(w, 0)), uint64_t(std::max(h, 0)), what); };
+  const uint64_t texels = std::max({area(spec.width, spec.height), area(spec.tile_width, spec.tile_height),
+                                    area(spec.full_width, spec.full_height)});
   // Per texel: the cached tile, the reader's buffer of the same size and a float copy when it converts (OpenImageIO
   // 2.4 was seen past 13 bytes per 8-bit RGB texel; 4/3 of the file's own size let a 19791880x8 BMP reach 2 GB).
   const uint64_t per_texel = 2 * uint64_t(spec.nchannels) * spec.format.size() + 4 * uint64_t(spec.nchannels);
