@@ -11,7 +11,7 @@ CXX_COMPILER ?= clang++
 CONFIGURE = cmake -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=$(CXX_COMPILER)
 
 .PHONY: all deps configure build demo test test-sanitize test-tsan bench bench-scalar-vs-simd bench-cycles \
-        bench-startup clean
+        bench-startup fuzz clean
 
 all: build
 
@@ -99,6 +99,21 @@ bench-scalar-vs-simd:
 	cmake --build $(SCALAR_BUILD) -j $(JOBS) --target torte_bench
 	TORTE_BENCH_FULL=$(BENCH_FULL) bash bench/scalar_vs_simd.sh ./$(BUILD)/bench/torte_bench \
 	  ./$(SCALAR_BUILD)/bench/torte_bench '$(SCALAR_VS_SIMD_FILTER)' $(BENCH_ARGS)
+
+# Fuzzing (fuzz/README.md): builds the libFuzzer harnesses with ASan+UBSan in $(FUZZ_BUILD) (clang only; installs
+# the runtime with install-deps.sh --fuzz) and runs each for FUZZ_SECONDS on its corpus, one at a time, then prints
+# executions, coverage and crashes per harness. FUZZ_HARNESSES picks some (e.g. FUZZ_HARNESSES='ply obj');
+# FUZZ_ARGS go to libFuzzer. The seeds and regressions also run in `make test` (fuzz_<name>_replay, no libFuzzer).
+FUZZ_BUILD ?= $(BUILD)-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_HARNESSES ?= ply obj nbt inflate region image kwargs lua_api
+
+fuzz:
+	bash scripts/install-deps.sh --fuzz
+	cmake -G Ninja -DCMAKE_BUILD_TYPE=Release '-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG' -DCMAKE_CXX_COMPILER=clang++ \
+	  -DTORTE_FUZZ=ON -DTORTE_BUILD_TESTS=OFF -DTORTE_BUILD_BENCH=OFF -S . -B $(FUZZ_BUILD) $(CMAKE_ARGS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target torte_fuzzers
+	FUZZ_ARGS='$(FUZZ_ARGS)' bash fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_HARNESSES)
 
 clean:
 	rm -rf $(BUILD) out

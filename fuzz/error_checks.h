@@ -1,6 +1,8 @@
 // Oracles shared by the harnesses: what a reader returns or throws must keep its documented promises, and a
 // broken promise stops the fuzzer like a crash (with the reason on stderr).
 #pragma once
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -10,8 +12,11 @@
 
 namespace torte::fuzz {
 
+int report_fd();  // fuzz_support.h
+
 [[noreturn]] inline void broken_promise(const std::string& what) {
-  std::fprintf(stderr, "fuzz: broken promise: %s\n", what.c_str());
+  const std::string line = "fuzz: broken promise: " + what + "\n";
+  (void)!write(report_fd(), line.data(), line.size());
   std::abort();
 }
 

@@ -42,6 +42,10 @@ add("grid:shape", function(kw) local g = T.voxel.grid{}; g:set(0, 0, 0, 2); retu
 add("torte.render", function(kw)
   kw.scene = kw.scene or T.scene()
   kw.camera = kw.camera or T.camera.perspective{}
+  -- torte's default image size and spp are legitimate but take seconds: tiny ones unless the input gave some
+  if kw.width == nil then kw.width = 4 end
+  if kw.height == nil then kw.height = 4 end
+  if kw.spp == nil then kw.spp = 1 end
   return T.render(kw)
 end)
 local tname = {}

@@ -2,6 +2,7 @@
 
 #include <lauxlib.h>
 #include <lualib.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
@@ -62,7 +63,20 @@ bool verbose() {
   return v;
 }
 
+// Weak: only sanitizer builds define it (the replay build may have none).
+extern "C" void __sanitizer_set_report_fd(void* fd) __attribute__((weak));
+
+int report_fd() {
+  static const int fd = [] {
+    const int copy = fcntl(2, F_DUPFD_CLOEXEC, 3);
+    if (copy >= 0 && __sanitizer_set_report_fd) __sanitizer_set_report_fd(reinterpret_cast<void*>(intptr_t(copy)));
+    return copy >= 0 ? copy : 2;
+  }();
+  return fd;
+}
+
 void init_process() {
+  (void)report_fd();
   static tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   OIIO::attribute("threads", 1);
   OIIO::attribute("exr_threads", 1);

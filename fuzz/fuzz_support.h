@@ -23,6 +23,10 @@ void write_file(const std::string& path, std::string_view bytes);
 /// TORTE_FUZZ_VERBOSE=1: harnesses print what each input did (errors raised, results), to check by hand that
 /// seeds reach what they should.
 bool verbose();
+/// A copy of the process's stderr taken before any QuietStderr (src/core/quiet_stderr.h) points fd 2 at
+/// /dev/null around OpenImageIO calls: broken promises and sanitizer reports are written there, so a crash inside
+/// such a call is still explained.
+int report_fd();
 /// Limits for every harness process: one TBB worker and one OpenImageIO thread (deterministic, and fair to the
 /// other processes on the machine), quiet progress, and torte's memory budget lowered below libFuzzer's RSS
 /// limit so over-large requests fail with torte's own error.

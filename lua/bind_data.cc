@@ -38,6 +38,7 @@
 
 #include "core/file_read.h"
 #include "core/memory_budget.h"
+#include "core/text.h"
 #include "file_access.h"
 #include "types.h"
 
@@ -259,7 +260,8 @@ class NbtReader {
       if (!where.empty() && s[0] != '[') where += '.';
       where += s;
     }
-    throw Error("torte.data.nbt: " + what + (where.empty() ? "" : " in '" + where + "'") + " at byte " +
+    // Tag names come from the file: control bytes would break the one-line error.
+    throw Error("torte.data.nbt: " + what + (where.empty() ? "" : " in '" + escape_text(where) + "'") + " at byte " +
                 std::to_string(p_ + 1) + " of " + std::to_string(n_));
   }
   void need(size_t bytes, const char* what) const {

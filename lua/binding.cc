@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "core/memory_budget.h"
+#include "core/text.h"
 #include "script_limits.h"
 
 namespace torte::lua {
@@ -275,6 +276,7 @@ std::vector<double> KwArgs::numbers(const char* key) {
 
 void KwArgs::finish() {
   std::string unknown;
+  bool found = false;  // not unknown.empty(): "" is a key too
   lua_pushnil(L_);
   while (lua_next(L_, index_) != 0) {
     lua_pop(L_, 1);  // value
@@ -282,14 +284,20 @@ void KwArgs::finish() {
       lua_pop(L_, 1);
       throw Error(function_ + ": positional values are not accepted; pass key = value pairs");
     }
-    const std::string key = lua_tostring(L_, -1);
+    // With its length: a key holding a NUL byte is not the keyword before the NUL.
+    size_t len = 0;
+    const char* s = lua_tolstring(L_, -1, &len);
+    std::string key(s, len);
     // The smallest unknown key, not the first lua_next gives: that order changes from run to run.
-    if (!read_.count(key) && (unknown.empty() || key < unknown)) unknown = key;
+    if (!read_.count(key) && (!found || key < unknown)) {
+      unknown = std::move(key);
+      found = true;
+    }
   }
-  if (unknown.empty()) return;
+  if (!found) return;
   std::string known;
   for (const std::string& k : read_) known += (known.empty() ? "" : ", ") + k;
-  throw Error(function_ + ": unknown key '" + unknown + "' (accepted keys: " + known + ")");
+  throw Error(function_ + ": unknown key '" + escape_text(unknown) + "' (accepted keys: " + known + ")");
 }
 
 void set_functions(lua_State* L, const luaL_Reg* functions) { luaL_setfuncs(L, functions, 0); }

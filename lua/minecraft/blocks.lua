@@ -376,7 +376,8 @@ local function by_data(list, mask)
 end
 local function dyed(suffix) return function(d) return M.DYE_ORDER[(d & 15) + 1] .. suffix end end
 local function woods(suffix, offset)
-  return function(d) return WOODS[(d & 3) + 1 + (offset or 0)] .. suffix end
+  -- leaves2 has two woods: data 2 and 3 (not written by the game, found in corrupt files) fall back to the first
+  return function(d) return (WOODS[(d & 3) + 1 + (offset or 0)] or WOODS[1 + (offset or 0)]) .. suffix end
 end
 local function slab(list)
   return function(d) return list[(d & 7) + 1] or list[1], {type = d & 8 ~= 0 and "top" or "bottom"} end

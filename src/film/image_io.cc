@@ -15,6 +15,7 @@
 #include "core/memory_budget.h"
 #include "core/quiet_stderr.h"
 #include "core/text.h"
+#include "film/exr_header_check.h"
 
 namespace torte {
 
@@ -123,6 +124,11 @@ void write_image(const Image& image, const std::string& path, const WriteOptions
 
 Image read_image(const std::string& path) {
   if (const std::string problem = regular_file_problem(path); !problem.empty()) read_error(path, problem);
+  // OpenEXR allocates from header values before reading pixels (a string attribute's declared size, a block's
+  // decoding buffers): checked here, since OpenImageIO gives no hook before that.
+  const ExrHeaderCheck exr = check_exr_header(path);
+  if (!exr.problem.empty()) read_error(path, exr.problem);
+  reserve_memory(exr.decode_bytes, "image '" + escape_text(path) + "' (OpenEXR decoding buffers)");
   std::unique_ptr<OIIO::ImageInput> in;
   {
     QuietStderr quiet;  // libpng prints its own line for a broken file; OIIO's error string has the message

@@ -4,6 +4,7 @@
 #include <OpenImageIO/oiioversion.h>
 #include <OpenImageIO/texture.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <mutex>
@@ -13,6 +14,7 @@
 #include "core/memory_budget.h"
 #include "core/quiet_stderr.h"
 #include "core/text.h"
+#include "film/exr_header_check.h"
 
 namespace torte {
 
@@ -153,8 +155,15 @@ void check_texture_size(const std::string& path, const OIIO::ImageSpec& spec) {
     throw Error("cannot read " + what + ": the header declares no pixels");
   if (spec.depth > 1) throw Error("cannot read " + what + ": volume images (depth " + std::to_string(spec.depth) +
                                   ") are not supported");
-  const uint64_t texels = checked_bytes(uint64_t(spec.width), uint64_t(spec.height), what);
-  const uint64_t bytes = checked_bytes(texels, uint64_t(spec.nchannels) * spec.format.size(), what);
+  // A tiled file's cache unit is a tile, and a header may declare tiles far larger than the image; the cache's
+  // MIP levels of an untiled file follow the display window (OpenEXR's displayWindow), which may dwarf the pixels.
+  const auto area = [&](int w, int h) { return checked_bytes(uint64_t(std::max(w, 0)), uint64_t(std::max(h, 0)), what); };
+  const uint64_t texels = std::max({area(spec.width, spec.height), area(spec.tile_width, spec.tile_height),
+                                    area(spec.full_width, spec.full_height)});
+  // Per texel: the cached tile, the reader's buffer of the same size and a float copy when it converts (OpenImageIO
+  // 2.4 was seen past 13 bytes per 8-bit RGB texel; 4/3 of the file's own size let a 19791880x8 BMP reach 2 GB).
+  const uint64_t per_texel = 2 * uint64_t(spec.nchannels) * spec.format.size() + 4 * uint64_t(spec.nchannels);
+  const uint64_t bytes = checked_bytes(texels, per_texel, what);
   reserve_memory(bytes > UINT64_MAX / 2 ? UINT64_MAX : bytes + bytes / 3, what);
 }
 
@@ -183,6 +192,9 @@ void preload(OIIO::TextureSystem& ts, OIIO::TextureSystem::TextureHandle* handle
 std::shared_ptr<const ImageSource> open_image_texture(const std::string& path, const ImageTextureOptions& options) {
   const std::string problem = regular_file_problem(path);
   if (!problem.empty()) throw Error("cannot open image texture '" + escape_text(path) + "': " + problem);
+  const ExrHeaderCheck exr = check_exr_header(path);
+  if (!exr.problem.empty()) throw Error("cannot read image texture '" + escape_text(path) + "': " + exr.problem);
+  reserve_memory(exr.decode_bytes, "image texture '" + escape_text(path) + "' (OpenEXR decoding buffers)");
   OIIO::TextureSystem& ts = texture_system();
   OIIO::ImageSpec spec;
   OIIO::TextureSystem::TextureHandle* handle = nullptr;
@@ -213,5 +225,7 @@ std::shared_ptr<const ImageSource> open_image_texture(const std::string& path, c
   }
   return std::make_shared<OiioImageSource>(path, handle, options, srgb, spec.width, spec.height);
 }
+
+void invalidate_image_texture(const std::string& path) { texture_system().invalidate(OIIO::ustring(path), true); }
 
 }  // namespace torte

@@ -18,4 +18,8 @@ namespace torte {
 // brightness are blended).
 std::shared_ptr<const ImageSource> open_image_texture(const std::string& path, const ImageTextureOptions& options);
 
+/// Drops what the process-wide texture cache holds for `path`, so that a file rewritten in place is read afresh
+/// (fuzzing and tests rewrite one file). Sources opened before must not be used afterwards.
+void invalidate_image_texture(const std::string& path);
+
 }  // namespace torte

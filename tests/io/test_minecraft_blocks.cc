@@ -26,6 +26,9 @@ assert(legacy(1, 0) == "minecraft:stone" and legacy(1, 1) == "minecraft:granite"
 assert(legacy(2, 0) == "minecraft:grass_block" and legacy(3, 2) == "minecraft:podzol")
 assert(legacy(17, 2) == "minecraft:birch_log" and legacy(18, 8) == "minecraft:oak_leaves")
 assert(legacy(162, 1) == "minecraft:dark_oak_log" and legacy(35, 14) == "minecraft:red_wool")
+-- leaves2 (161) has two woods; data 2 and 3 (corrupt files) fall back to the first instead of a nil concat
+assert(legacy(161, 1) == "minecraft:dark_oak_leaves" and legacy(161, 2) == "minecraft:acacia_leaves")
+assert(legacy(161, 11) == "minecraft:acacia_leaves")
 assert(legacy(159, 1) == "minecraft:orange_terracotta" and legacy(98, 1) == "minecraft:mossy_stone_bricks")
 assert(reg:legacy(17, 4) ~= reg:legacy(17, 0) and legacy(17, 4) == "minecraft:oak_log", "a log along x")
 assert(reg:state("minecraft:oak_log", {axis = "y"}) == reg:legacy(17, 0))

@@ -102,11 +102,12 @@ TEST_CASE("limits io: a truncated texture fails every time it is made, not only 
 
 TEST_CASE("limits io: image sizes from the header are checked against the budget before reading", "[limits]") {
   LimitDir dir("budget");
-  // Headers only: 4096x4096 RGB, 48 MB of 8-bit texels (64 MB with MIP levels), 400 MB decoded as floats.
+  // Headers only: 4096x4096 RGB, as a texture 18 bytes a texel (the cached tile, the reader's buffer, a float
+  // copy) plus a third for MIP levels, 384 MB; as an image 400 MB decoded as floats.
   const std::string ppm = dir.write("big.ppm", "P6\n4096 4096\n255\n" + std::string(1000, '\x40'));
   ScopedMemoryLimit limit(uint64_t(32) << 20);
   CHECK_THAT(error_of([&] { open_image_texture(ppm, {}); }),
-             Contains("image texture '" + ppm + "' (4096x4096, 3 channels) needs ~64.0 MB") &&
+             Contains("image texture '" + ppm + "' (4096x4096, 3 channels) needs ~384 MB") &&
                  Contains("over the memory limit of 32.0 MB"));
   CHECK_THAT(error_of([&] { read_image(ppm); }),
              Contains("image '" + ppm + "' (4096x4096, 3 channels) needs ~384 MB") &&

@@ -1,0 +1,24 @@
+// A check of OpenEXR headers before OpenImageIO opens a file. OpenEXR 3.1 (Debian 12) allocates from header values
+// before reading any pixel: a string attribute's declared size (up to 2 GB), and decoding buffers of a whole block
+// of scanlines (up to 256 lines of the data window's width) or of a tile. A few hundred bytes can claim gigabytes.
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace torte {
+
+struct ExrHeaderCheck {
+  /// What is wrong ("corrupt OpenEXR header: attribute 'x' (string) claims 2147483647 bytes, 380 are left in the
+  /// file"), or "" when the headers are sound or the file is not an OpenEXR file.
+  std::string problem;
+  /// Bytes OpenEXR will allocate to decode one block of scanlines or one tile (the largest over all parts), to be
+  /// checked against the memory budget; 0 for other formats.
+  uint64_t decode_bytes = 0;
+};
+
+/// When the file at `path` starts with the OpenEXR magic number, walks its header(s): every attribute's name and
+/// type must be terminated and its value must end inside the file. Files of other formats, and unreadable files,
+/// pass (the image reader reports those).
+ExrHeaderCheck check_exr_header(const std::string& path);
+
+}  // namespace torte
