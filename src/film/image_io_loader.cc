@@ -68,6 +68,8 @@ std::shared_ptr<const ImageSource> open_image_texture(const std::string& path, c
   return module().open_image_texture(path, options);
 }
 
+void invalidate_image_texture(const std::string& path) { module().invalidate_image_texture(path); }
+
 float linear_to_srgb(float v) { return module().linear_to_srgb(v); }
 float srgb_to_linear(float v) { return module().srgb_to_linear(v); }
 

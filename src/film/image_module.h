@@ -18,10 +18,11 @@ struct ImageModuleApi {
   std::shared_ptr<const ImageSource> (*open_image_texture)(const std::string&, const ImageTextureOptions&);
   float (*linear_to_srgb)(float);
   float (*srgb_to_linear)(float);
+  void (*invalidate_image_texture)(const std::string&);
 };
 
 // Bumped whenever ImageModuleApi or a signature in it changes.
-inline constexpr int kImageModuleAbi = 1;
+inline constexpr int kImageModuleAbi = 2;
 
 }  // namespace torte
 
