@@ -1,9 +1,8 @@
 #include "render/igi.h"
 
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 
+#include "core/parallel.h"
 #include "core/rng.h"
 #include "light/light_emission.h"
 #include "render/material_resolve.h"
@@ -128,7 +127,7 @@ VplStore generate_vpls(const Scene& scene, const RenderSettings& settings) {
   const Sampler sampler(settings.seed);
   std::vector<std::vector<RawVpl>> raw(static_cast<size_t>(sets));
   std::vector<uint64_t> rays(static_cast<size_t>(sets), 0);
-  tbb::parallel_for(0, sets, [&](int set) {
+  parallel_for(0, sets, [&](int set) {
     for (uint32_t j = 0; j < uint32_t(settings.light_paths); ++j)
       rays[size_t(set)] += trace_light_path(scene, settings, sampler, set, j, raw[size_t(set)]);
   });

@@ -1,7 +1,5 @@
 #include "render/render.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -10,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/memory_budget.h"
+#include "core/parallel.h"
 #include "render/igi.h"
 #include "render/wavefront.h"
 
@@ -92,7 +91,7 @@ RenderOutput render(const Scene& scene, const RenderSettings& settings, Progress
     std::vector<SampleRequest> requests;
     RenderStats stats;
   };
-  tbb::enumerable_thread_specific<Worker> workers;
+  PerThread<Worker> workers;
   std::atomic<uint64_t> samples_done{0}, rays_done{0};
   const uint64_t samples_total = uint64_t(settings.width) * settings.height * settings.spp;
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
@@ -103,7 +102,7 @@ RenderOutput render(const Scene& scene, const RenderSettings& settings, Progress
   int first_sample = 0;
   for (const int pass_spp : make_passes(settings.spp)) {
     if (cancelled() || texture_failed()) break;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    parallel_for_blocks(size_t(0), tiles.size(), 1, [&](IndexRange<size_t> range) {
       Worker& w = workers.local();
       if (!w.renderer) w.renderer = std::make_unique<WavefrontRenderer>(scene, camera, settings, sampler, vpl_ptr);
       for (size_t t = range.begin(); t != range.end(); ++t) {
@@ -120,7 +119,7 @@ RenderOutput render(const Scene& scene, const RenderSettings& settings, Progress
         const uint64_t rays = rays_done += w.stats.rays() - rays_before;
         if (progress) progress->update(done, samples_total, rays, elapsed());
       }
-    }, tbb::simple_partitioner());
+    }, Split::each_block);
     first_sample += pass_spp;
   }
 
