@@ -1,10 +1,8 @@
 // torte's executor seam: every parallel loop, fork and reduction of the renderer goes through these templates.
-// They forward to oneTBB (the scheduler of the product). In ThreadSanitizer builds they also tell TSan about
-// TBB's hand-offs: Debian's libtbb is not instrumented, so TSan cannot see that spawning a task orders what the
-// spawner did before it, or that waiting for a loop orders its tasks before what follows (each parallel_for would
-// be reported as races on the loop's data). The annotations add exactly those edges, fork and join, and nothing
-// between sibling tasks, so races between tasks (and with the caller during the loop) are still reported.
-// tests/sanitizers/README.md describes the TSan build.
+// They forward to oneTBB (the scheduler of the product). In ThreadSanitizer builds they also make TBB's hand-offs
+// visible to TSan: Debian's libtbb is not instrumented, so TSan cannot see that spawning a task orders what the
+// spawner did before it, or that waiting for a loop orders its tasks before what follows, and every loop would be
+// reported as races on its data and on the scheduler's recycled memory. tests/sanitizers/README.md has the details.
 #pragma once
 #include <algorithm>
 #include <cstddef>
@@ -29,6 +27,8 @@
 #ifdef TORTE_TSAN
 extern "C" void __tsan_acquire(void* addr);
 extern "C" void __tsan_release(void* addr);
+extern "C" void __tsan_ignore_thread_begin();
+extern "C" void __tsan_ignore_thread_end();
 #endif
 
 namespace torte {
@@ -58,31 +58,63 @@ using PerThread = tbb::enumerable_thread_specific<T>;
 
 namespace detail {
 
+// TSan's view of the scheduler (annotations, no-ops elsewhere). Two things are added:
+// - The happens-before edges of each fork-join, as TSan sync objects (ForkJoin: only its members' addresses
+//   matter): released before any task is spawned and acquired by every task when it starts (`fork`); released by
+//   every task when it ends, also by an exception, and acquired by the caller once the wait returns (`join`).
+//   Tasks never acquire `join`, so sibling tasks stay unordered and races between them are still reported.
+// - Threads ignore their own memory accesses while they run scheduler code, i.e. between entering TBB through
+//   this seam and starting a task body, and between a body's end and the next. libtbb recycles task objects and
+//   the waiting thread's stack; the inline half of TBB (its headers) does atomics on them after a body's end, and
+//   without libtbb's side of those atomics TSan would pair them with torte's next use of that memory. Bodies,
+//   and everything torte runs outside loops, stay fully checked.
 #ifdef TORTE_TSAN
 inline constexpr bool kAnnotateForTsan = true;
+inline thread_local bool t_in_scheduler = false;  // this thread's accesses are being ignored
 inline void hb_release(void* sync) { __tsan_release(sync); }
 inline void hb_acquire(void* sync) { __tsan_acquire(sync); }
+inline void scheduler_enter() {
+  __tsan_ignore_thread_begin();
+  t_in_scheduler = true;
+}
+inline void scheduler_leave() {
+  __tsan_ignore_thread_end();
+  t_in_scheduler = false;
+}
 #else
 inline constexpr bool kAnnotateForTsan = false;
+inline constexpr bool t_in_scheduler = true;
 inline void hb_release(void*) {}
 inline void hb_acquire(void*) {}
+inline void scheduler_enter() {}
+inline void scheduler_leave() {}
 #endif
 
-// The happens-before edges of one fork-join, as TSan sync objects (only the members' addresses matter): the
-// constructor releases `fork` before any task is spawned, every task acquires it when it starts and releases
-// `join` when it ends (also by an exception), and the destructor acquires `join` after the wait returns.
-// Tasks never acquire `join`, so siblings stay unordered for TSan.
 struct ForkJoin {
-  char fork = 0, join = 0;
-  ForkJoin() { hb_release(&fork); }
-  ~ForkJoin() { hb_acquire(&join); }
+  char fork, join;  // never read or written (a store could pair with the scheduler's use of recycled stack)
+  // The caller's side: the fork edge, then scheduler code until the wait returns, then the join edge.
+  ForkJoin() {
+    hb_release(&fork);
+    scheduler_enter();
+  }
+  ~ForkJoin() {
+    scheduler_leave();
+    hb_acquire(&join);
+  }
   ForkJoin(const ForkJoin&) = delete;
   ForkJoin& operator=(const ForkJoin&) = delete;
 
+  // A task body's side. A worker's first body finds the thread outside ignoring (it came from libtbb's loop).
   class Task {
    public:
-    explicit Task(ForkJoin& fj) : fj_(fj) { hb_acquire(&fj_.fork); }
-    ~Task() { hb_release(&fj_.join); }
+    explicit Task(ForkJoin& fj) : fj_(fj) {
+      if (t_in_scheduler) scheduler_leave();
+      hb_acquire(&fj_.fork);
+    }
+    ~Task() {
+      hb_release(&fj_.join);
+      scheduler_enter();
+    }
     Task(const Task&) = delete;
     Task& operator=(const Task&) = delete;
 
@@ -94,10 +126,14 @@ struct ForkJoin {
   class Combine {
    public:
     explicit Combine(ForkJoin& fj) : fj_(fj) {
+      if (t_in_scheduler) scheduler_leave();
       hb_acquire(&fj_.fork);
       hb_acquire(&fj_.join);
     }
-    ~Combine() { hb_release(&fj_.join); }
+    ~Combine() {
+      hb_release(&fj_.join);
+      scheduler_enter();
+    }
     Combine(const Combine&) = delete;
     Combine& operator=(const Combine&) = delete;
 
