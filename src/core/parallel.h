@@ -25,6 +25,7 @@
 #define TORTE_TSAN 1
 #endif
 #ifdef TORTE_TSAN
+#include <tbb/task_scheduler_observer.h>
 extern "C" void __tsan_acquire(void* addr);
 extern "C" void __tsan_release(void* addr);
 extern "C" void __tsan_ignore_thread_begin();
@@ -81,6 +82,22 @@ inline void scheduler_leave() {
   __tsan_ignore_thread_end();
   t_in_scheduler = false;
 }
+// Worker threads are in scheduler code whenever they are in the arena outside a body: they ignore from entering
+// it, and stop when they leave it (a thread must not exit ignoring: TSan aborts).
+class WorkerIgnores : public tbb::task_scheduler_observer {
+ public:
+  WorkerIgnores() { observe(true); }
+  void on_scheduler_entry(bool is_worker) override {
+    if (is_worker && !t_in_scheduler) scheduler_enter();
+  }
+  void on_scheduler_exit(bool is_worker) override {
+    if (is_worker && t_in_scheduler) scheduler_leave();
+  }
+};
+// Before the first loop starts workers; never destroyed, as workers may leave the arena during exit.
+inline void observe_workers() {
+  [[maybe_unused]] static const WorkerIgnores* const observer = new WorkerIgnores;
+}
 #else
 inline constexpr bool kAnnotateForTsan = false;
 inline constexpr bool t_in_scheduler = true;
@@ -88,12 +105,14 @@ inline void hb_release(void*) {}
 inline void hb_acquire(void*) {}
 inline void scheduler_enter() {}
 inline void scheduler_leave() {}
+inline void observe_workers() {}
 #endif
 
 struct ForkJoin {
   char fork, join;  // never read or written (a store could pair with the scheduler's use of recycled stack)
   // The caller's side: the fork edge, then scheduler code until the wait returns, then the join edge.
   ForkJoin() {
+    observe_workers();
     hb_release(&fork);
     scheduler_enter();
   }
@@ -104,7 +123,7 @@ struct ForkJoin {
   ForkJoin(const ForkJoin&) = delete;
   ForkJoin& operator=(const ForkJoin&) = delete;
 
-  // A task body's side. A worker's first body finds the thread outside ignoring (it came from libtbb's loop).
+  // A task body's side.
   class Task {
    public:
     explicit Task(ForkJoin& fj) : fj_(fj) {
