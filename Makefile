@@ -34,12 +34,17 @@ test: build
 # Sanitizer builds (tests/sanitizers/README.md): clang with -fsanitize=address,undefined in $(ASAN_BUILD), or
 # -fsanitize=thread in $(TSAN_BUILD), the whole suite built; heavy tests run at reduced sizes
 # (TORTE_TEST_REDUCED=1, set by the build's ctest environment with the sanitizer options and suppressions).
-# `make test-tsan` runs the tests matching TSAN_TESTS (a ctest regex; default all). It is not clean yet and not in
-# .ci/run: Debian's TBB is not instrumented (tests/sanitizers/README.md).
+# `make test-tsan` runs the tests matching TSAN_TESTS (a ctest regex; default all) except those matching
+# TSAN_EXCLUDE: the tests that wait for SIGINT to stop a busy Lua loop or a render (TSan defers an asynchronous
+# signal until the receiving thread calls an intercepted libc function, which those loops never do, so the
+# handler never runs), and one test whose own 60 s limit TSan's slowdown exceeds on 2 busy cores (the wrong-NBT-type
+# catalogue: clean when run alone, in 31 s). tests/sanitizers/README.md has the details. Not in .ci/run: no time
+# is left there for a third build.
 ASAN_BUILD ?= build-asan
 TSAN_BUILD ?= build-tsan
 SANITIZE_CONFIGURE = cmake -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ -DTORTE_BUILD_BENCH=OFF
 TSAN_TESTS ?= .
+TSAN_EXCLUDE ?= runtime: the first Ctrl-C stops Lua code|bad input: interrupt/rt_sigint_(loop|pcall_loop|coroutine|frame_callback|sandboxed|render_save)|minecraft errors: values of the wrong NBT type
 
 test-sanitize: deps
 	$(SANITIZE_CONFIGURE) -DTORTE_SANITIZE=address,undefined -S . -B $(ASAN_BUILD) $(CMAKE_ARGS)
@@ -49,7 +54,7 @@ test-sanitize: deps
 test-tsan: deps
 	$(SANITIZE_CONFIGURE) -DTORTE_SANITIZE=thread -S . -B $(TSAN_BUILD) $(CMAKE_ARGS)
 	cmake --build $(TSAN_BUILD) -j $(JOBS)
-	cd $(TSAN_BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900 -R '$(TSAN_TESTS)'
+	cd $(TSAN_BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900 -R '$(TSAN_TESTS)' -E '$(TSAN_EXCLUDE)'
 
 # Benchmarks (bench/RESULTS.md). `make bench` installs Embree (install-deps.sh --bench), configures, builds
 # torte_bench and embree-compare, and runs both. Quick by default (bunny, dragon, bunny-1m); BENCH_FULL=1 adds

@@ -26,9 +26,7 @@
 // Hit distances must agree (relative 1e-4, and hit vs miss); the fraction of disagreeing rays is printed per
 // workload and the program fails (exit 1, "FAIL" on stderr) when it exceeds 1e-4 for any workload.
 #include <embree3/rtcore.h>
-#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -45,6 +43,7 @@
 #include "accel/bvh_build.h"
 #include "embree_tree.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "traverse.h"
 #include "workloads.h"
 
@@ -95,10 +94,9 @@ void for_rays(size_t n, const std::function<void(size_t, size_t)>& f) {
     f(0, n);
     return;
   }
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + kChunk - 1) / kChunk, 1),
-                    [&](const tbb::blocked_range<size_t>& r) {
-                      for (size_t c = r.begin(); c < r.end(); ++c) f(c * kChunk, std::min(n, (c + 1) * kChunk));
-                    });
+  parallel_for_blocks(size_t(0), (n + kChunk - 1) / kChunk, 1, [&](IndexRange<size_t> r) {
+    for (size_t c = r.begin(); c < r.end(); ++c) f(c * kChunk, std::min(n, (c + 1) * kChunk));
+  });
 }
 
 // Seconds taken by f, in the clock described at the top of the file.

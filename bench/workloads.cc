@@ -1,8 +1,5 @@
 #include "workloads.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "geometry/mesh_io.h"
@@ -79,7 +77,7 @@ void compute_reference(const BenchScene& s, Workload& w, std::vector<Hit>* hits 
   w.ref.t.assign(n, kInfinity);
   w.ref.occluded.assign(n, 0);
   if (hits) hits->assign(n, Hit{});
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+  parallel_for_blocks(size_t(0), n, 4096, [&](IndexRange<size_t> r) {
     for (size_t i = r.begin(); i < r.end(); ++i) {
       const Ray ray = w.rays.ray(i);
       const Hit h = s.reference_closest(ray);
@@ -293,7 +291,7 @@ Check check_any(const Reference& ref, const uint8_t* occluded, size_t n) {
 
 std::vector<Bounds3f> triangle_bounds(const TriangleMesh& mesh) {
   std::vector<Bounds3f> b(mesh.triangle_count());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, b.size(), 16384), [&](const tbb::blocked_range<size_t>& r) {
+  parallel_for_blocks(size_t(0), b.size(), 16384, [&](IndexRange<size_t> r) {
     for (size_t t = r.begin(); t < r.end(); ++t) b[t] = mesh.triangle_bounds(t);
   });
   return b;

@@ -7,7 +7,6 @@
 //
 // Also used by bench/bench_shading.cc as the per-hit virtual-dispatch baseline (reference::PerHitBsdf).
 #pragma once
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +16,7 @@
 
 #include "camera/camera.h"
 #include "core/rng.h"
+#include "core/parallel.h"
 #include "core/sampling.h"
 #include "film/image.h"
 #include "material/material_traits.h"
@@ -119,7 +119,7 @@ class PathTracer {
   std::vector<PixelEstimate> render(int spp, uint64_t seed) const {
     const Camera camera(camera_, settings_.width, settings_.height);
     std::vector<PixelEstimate> out(size_t(settings_.width) * settings_.height);
-    tbb::parallel_for(0, settings_.height, [&](int y) {
+    parallel_for(0, settings_.height, [&](int y) {
       for (int x = 0; x < settings_.width; ++x) {
         const uint32_t pixel = uint32_t(y * settings_.width + x);
         Pcg32 rng(mix_bits(seed * 0x9e3779b97f4a7c15ULL + pixel), pixel);

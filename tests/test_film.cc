@@ -1,7 +1,6 @@
 // Film: weighted camera samples per pixel, splats at arbitrary positions, and bitwise determinism of splats
 // merged from work items that ran on 1 or 2 threads.
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -9,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/parallel.h"
 #include "core/rng.h"
 #include "film/film.h"
 
@@ -48,7 +48,7 @@ Image splat_image(int threads) {
   Film film(kW, kH);
   for (uint32_t p = 0; p < film.pixel_count(); p += 3) film.add_sample(p, Rgb(0.25f), 1);
   std::vector<SplatBuffer> buffers(kItems);
-  tbb::parallel_for(0, kItems, [&](int item) {
+  torte::parallel_for(0, kItems, [&](int item) {
     Pcg32 rng(uint64_t(item) * 7919 + 1);
     for (int k = 0; k < 4000; ++k) {
       const Vec2f p{rng.next_float() * kW * 1.1f - 1, rng.next_float() * kH * 1.1f - 1};

@@ -1,7 +1,6 @@
 // Scene construction and rendering never crash, hang or silently give a wrong image (issue 22): nesting limits
 // of materials, textures and groups, lights placed by instances, filters wider than the image, non-finite and
 // out-of-range values, warnings for legitimately black scenes, and Ctrl-C while a scene is built.
-#include <tbb/parallel_for.h>
 
 #include <catch2/catch.hpp>
 #include <atomic>
@@ -12,6 +11,7 @@
 
 #include "accel/bvh_build.h"
 #include "core/interrupt.h"
+#include "core/parallel.h"
 #include "geometry/subdivide.h"
 #include "render/render.h"
 #include "core/progress_counter.h"
@@ -149,7 +149,7 @@ TEST_CASE("texture expressions nest at most kMaxTextureDepth levels", "[robustne
   const TextureTable table = builder.finish();
   const float expected = 0.2f + 0.0003f * float(kMaxTextureDepth - 3);
   std::atomic<int> wrong{0};
-  tbb::parallel_for(0, 64, [&](int i) {
+  torte::parallel_for(0, 64, [&](int i) {
     TextureContext ctx{};
     ctx.uv = Vec2f(0.01f * float(i), 0.3f);
     if (std::fabs(table.eval(p, ctx) - expected) > 1e-3f) ++wrong;

@@ -3,10 +3,6 @@
 // result into wide nodes.
 #include "accel/bvh_build.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
-#include <tbb/parallel_reduce.h>
 
 #include <emmintrin.h>
 
@@ -20,6 +16,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/memory_budget.h"
+#include "core/parallel.h"
 
 namespace torte {
 namespace {
@@ -177,7 +174,7 @@ class Builder {
     auto build_left = [&] { build(pair, begin, mid, depth + 1, left, fork); };
     auto build_right = [&] { build(pair + 1, mid, end, depth + 1, right, fork); };
     if (fork) {
-      tbb::parallel_invoke(build_left, build_right);
+      parallel_invoke(build_left, build_right);
     } else {
       build_left();
       build_right();
@@ -248,9 +245,9 @@ class Builder {
     BinSet bins(nbins);
     if (o_.parallel && end - begin >= kParallelBinMin) {
       // min/max and integer sums are exact in any order: the result does not depend on how TBB splits.
-      bins = tbb::parallel_reduce(
-          tbb::blocked_range<uint32_t>(begin, end, kGrain), BinSet(nbins),
-          [&](const tbb::blocked_range<uint32_t>& r, BinSet acc) {
+      bins = parallel_reduce(
+          begin, end, kGrain, BinSet(nbins),
+          [&](IndexRange<uint32_t> r, BinSet acc) {
             bin_range(r.begin(), r.end(), rb.cb, k, acc);
             return acc;
           },
@@ -428,9 +425,9 @@ class Builder {
       return acc;
     };
     if (!o_.parallel || end - begin < kParallelBinMin) return serial(begin, end, {});
-    return tbb::parallel_reduce(
-        tbb::blocked_range<uint32_t>(begin, end, kGrain), RangeBounds{},
-        [&](const tbb::blocked_range<uint32_t>& r, RangeBounds acc) { return serial(r.begin(), r.end(), acc); },
+    return parallel_reduce(
+        begin, end, kGrain, RangeBounds{},
+        [&](IndexRange<uint32_t> r, RangeBounds acc) { return serial(r.begin(), r.end(), acc); },
         [](RangeBounds a, const RangeBounds& b) {
           a.extend(b);
           return a;
@@ -473,7 +470,7 @@ void for_chunks(size_t n, bool parallel, F&& f) {
     f(c, c * kGrain, std::min(n, (c + 1) * kGrain));
   };
   if (parallel && chunks > 1) {
-    tbb::parallel_for(size_t(0), chunks, body);
+    parallel_for(size_t(0), chunks, body);
   } else {
     for (size_t c = 0; c < chunks; ++c) body(c);
   }

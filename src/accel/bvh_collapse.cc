@@ -1,12 +1,12 @@
 // Collapse of the binary BVH into WideBvh<N> (SAH-optimal dynamic programming or the greedy largest-area rule),
 // the wide tree's SAH cost and statistics. See bvh_build.h; triangle leaves are in triangle_leaves.cc.
-#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <string>
 
 #include "accel/bvh_build.h"
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace torte {
 
@@ -138,7 +138,7 @@ class OptimalCollapser {
     }
     const uint32_t l = b.first, r = b.first + 1;
     if (o_.parallel && depth < kParallelDepth && bin_.size() >= kParallelNodesMin) {
-      tbb::parallel_invoke([&] { solve(l, depth + 1); }, [&] { solve(r, depth + 1); });
+      parallel_invoke([&] { solve(l, depth + 1); }, [&] { solve(r, depth + 1); });
     } else {
       solve(l, depth + 1);
       solve(r, depth + 1);

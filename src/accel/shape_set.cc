@@ -1,7 +1,5 @@
 #include "accel/shape_set.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/parallel.h"
 #include "simd/traverse.h"
 
 namespace torte {
@@ -33,15 +32,13 @@ void ShapeSet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadri
   };
   HugePageVector<Bounds3f> tri_bounds = make_huge_page_vector<Bounds3f>(input_triangles);
   // Parallel over meshes and, nested, over each mesh's triangles: one big mesh would otherwise run serially.
-  tbb::parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
+  parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
     const TriangleMesh& mesh = meshes[m];
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangle_count(), 8192),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                        throw_if_interrupted("building the scene");  // TBB rethrows in the caller
-                        for (size_t t = r.begin(); t < r.end(); ++t)
-                          tri_bounds[mesh_first[m] + t] = mesh.triangle_bounds(t);
-                        report(r.size());
-                      });
+    parallel_for_blocks(size_t(0), mesh.triangle_count(), 8192, [&](IndexRange<size_t> r) {
+      throw_if_interrupted("building the scene");  // TBB rethrows in the caller
+      for (size_t t = r.begin(); t < r.end(); ++t) tri_bounds[mesh_first[m] + t] = mesh.triangle_bounds(t);
+      report(r.size());
+    });
   });
   BvhBuildOptions options;
   options.progress = progress;
@@ -91,7 +88,7 @@ void ShapeSet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std:
   const auto block_begin = [&](size_t b) { return b * n / blocks; };
   std::vector<uint32_t> rank(blocks * mesh_count, 0);  // block b, mesh m at b * mesh_count + m
   if (!one_mesh)
-    tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+    parallel_for(size_t(0), blocks, [&](size_t b) {
       for (size_t i = block_begin(b); i < block_begin(b + 1); ++i) ++rank[b * mesh_count + mesh_of(order[i])];
     });
   else
@@ -107,7 +104,7 @@ void ShapeSet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std:
   const auto stage = [&](uint32_t m, size_t local, const uint32_t* t) {
     std::memcpy(scratch.data() + 12 * (mesh_first[m] + local), t, 12);
   };
-  tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+  parallel_for(size_t(0), blocks, [&](size_t b) {
     uint32_t* next = rank.data() + b * mesh_count;  // no element when there are no meshes
     for (size_t i = block_begin(b); i < block_begin(b + 1); ++i) {
       const uint32_t g = order[i], m = mesh_of(g), local = next[m]++;
@@ -122,7 +119,7 @@ void ShapeSet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std:
       for (size_t t = 0, next = placed[m]; t < meshes[m].triangle_count(); ++t)
         if (!in_tree[mesh_first[m] + t]) stage(m, next++, &meshes[m].indices[3 * t]);
   }
-  tbb::parallel_for(uint32_t(0), uint32_t(mesh_count), [&](uint32_t m) {
+  parallel_for(uint32_t(0), uint32_t(mesh_count), [&](uint32_t m) {
     if (!meshes[m].indices.empty())
       std::memcpy(meshes[m].indices.data(), scratch.data() + 12 * size_t(mesh_first[m]), 4 * meshes[m].indices.size());
   });

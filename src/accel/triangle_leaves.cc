@@ -1,13 +1,12 @@
 // make_triangle_leaves: the wide BVH's triangles copied into leaf order (accel/wide_bvh.h, TriangleLeaves), and
 // TriangleLeaves::leaf_of, which finds a triangle's leaf from the leaf-start bitmap.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <bit>
 #include <string>
 
 #include "accel/bvh_build.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "geometry/mesh.h"
 
 namespace torte {
@@ -57,8 +56,7 @@ TriangleLeaves fill_leaves(const WideBvh<N>& bvh, bool parallel, Vertices&& vert
   };
   const size_t nodes = bvh.nodes.size();
   if (parallel && n > 16384) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes, 1024),
-                      [&](const tbb::blocked_range<size_t>& r) { fill(r.begin(), r.end()); });
+    parallel_for_blocks(size_t(0), nodes, 1024, [&](IndexRange<size_t> r) { fill(r.begin(), r.end()); });
   } else {
     fill(0, nodes);
   }

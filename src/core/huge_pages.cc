@@ -1,14 +1,14 @@
 #include "core/huge_pages.h"
 
 #include <sys/mman.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+
+#include "core/parallel.h"
 
 namespace torte::huge_pages {
 namespace {
@@ -56,12 +56,10 @@ void fault_in(void* p, size_t bytes) {
   char* const base = static_cast<char*>(p);
   // Chunks of whole huge pages; within them every 4 KiB page is written, so ordinary pages (no huge-page advice)
   // are faulted in too, and with huge pages the first write of each 2 MiB maps it and the rest find it mapped.
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, (bytes + kHugePage - 1) / kHugePage),
-                    [&](const tbb::blocked_range<size_t>& r) {
-                      const size_t end = std::min(bytes, r.end() * kHugePage);
-                      for (size_t at = r.begin() * kHugePage; at < end; at += kPage)
-                        *static_cast<volatile char*>(base + at) = 0;
-                    });
+  parallel_for_blocks(size_t(0), (bytes + kHugePage - 1) / kHugePage, 1, [&](IndexRange<size_t> r) {
+    const size_t end = std::min(bytes, r.end() * kHugePage);
+    for (size_t at = r.begin() * kHugePage; at < end; at += kPage) *static_cast<volatile char*>(base + at) = 0;
+  });
 }
 
 size_t backed_bytes(const void* p) {

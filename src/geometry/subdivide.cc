@@ -1,8 +1,5 @@
 #include "geometry/subdivide.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <atomic>
@@ -18,6 +15,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/memory_budget.h"
+#include "core/parallel.h"
 
 namespace torte {
 
@@ -28,7 +26,7 @@ constexpr uint64_t kMaxTriangles = kMaxSubdividedTriangles;
 
 template <class Fn>
 void parallel(size_t n, Fn fn) {
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+  parallel_for_blocks(size_t(0), n, kGrain, [&](IndexRange<size_t> r) {
     throw_if_interrupted("subdividing a mesh");  // a safe point per block: TBB rethrows in the caller
     for (size_t i = r.begin(); i != r.end(); ++i) fn(i);
   });
@@ -64,7 +62,7 @@ std::vector<Vec3f> welded_normals(const TriangleMesh& m) {
   std::vector<uint32_t> order(V);
   std::iota(order.begin(), order.end(), 0u);
   auto key = [&](uint32_t i) { return std::tuple(m.x[i], m.y[i], m.z[i], i); };
-  tbb::parallel_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+  parallel_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
   std::vector<uint32_t> canon(V);  // the lowest index at the same position
   for (size_t k = 0; k < V; ++k)
     canon[order[k]] = k > 0 && m.position(order[k]) == m.position(order[k - 1]) ? canon[order[k - 1]] : order[k];

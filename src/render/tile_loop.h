@@ -3,8 +3,6 @@
 //   std::unique_ptr<Worker> make_worker();             // one per thread; Worker::render(requests, film, stats)
 //   void finish(RenderStats&);                          // adds the driver's own counts (e.g. light-path rays)
 #pragma once
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -14,6 +12,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "film/film.h"
 #include "render/render.h"
 #include "render/stage_camera.h"
@@ -44,7 +43,7 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
     std::vector<SampleRequest> requests;
     RenderStats stats;
   };
-  tbb::enumerable_thread_specific<Slot> slots;
+  PerThread<Slot> slots;
   std::atomic<uint64_t> samples_done{0}, rays_done{0};
   const uint64_t samples_total = uint64_t(settings.width) * settings.height * settings.spp;
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
@@ -56,7 +55,7 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
   for (const int pass_spp : detail::make_passes(settings.spp)) {
     if (cancelled() || texture_failed()) break;
     driver.begin_pass(first_sample, pass_spp);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    parallel_for_blocks(size_t(0), tiles.size(), 1, [&](IndexRange<size_t> range) {
       Slot& w = slots.local();
       if (!w.worker) w.worker = driver.make_worker();
       for (size_t t = range.begin(); t != range.end(); ++t) {
@@ -73,7 +72,7 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
         const uint64_t rays = rays_done += w.stats.rays() - rays_before;
         if (progress) progress->update(done, samples_total, rays, elapsed());
       }
-    }, tbb::simple_partitioner());
+    }, Split::each_block);
     first_sample += pass_spp;
   }
 

@@ -1,9 +1,8 @@
 #include "render/vpl.h"
 
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 
+#include "core/parallel.h"
 #include "core/rng.h"
 #include "light/light_emission.h"
 #include "render/material_resolve.h"
@@ -126,7 +125,7 @@ VplStore generate_vpls(const Scene& scene, const RenderSettings& settings, uint3
     samplers.emplace_back(mix_bits(settings.seed ^ (uint64_t(first_family + uint32_t(f)) + 1) * 0x9e3779b97f4a7c15ull));
   std::vector<std::vector<RawVpl>> raw(static_cast<size_t>(sets));
   std::vector<uint64_t> rays(static_cast<size_t>(sets), 0);
-  tbb::parallel_for(0, sets, [&](int set) {
+  parallel_for(0, sets, [&](int set) {
     const Sampler& sampler = samplers[size_t(set / settings.vpl_sets)];
     for (uint32_t j = 0; j < uint32_t(settings.light_paths); ++j)
       rays[size_t(set)] +=

@@ -1,6 +1,5 @@
 #include "voxel/voxel_tree.h"
 
-#include <tbb/parallel_for.h>
 
 #include <atomic>
 #include <chrono>
@@ -8,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/memory_budget.h"
+#include "core/parallel.h"
 
 namespace torte {
 
@@ -72,7 +72,7 @@ struct TreeBuilder {
   // Parallel build. The serial recursion lays nodes out in pre-order (a node's children pair, then the left
   // child's subtree, then the right one's), so a subtree's nodes are contiguous and, relative to their start,
   // independent of where they land. The top levels are planned serially down to boxes of `cut` log2 cells (or
-  // uniform boxes, which are leaves); those subtrees are built as independent tasks (tbb::parallel_for, dynamic
+  // uniform boxes, which are leaves); those subtrees are built as independent tasks (parallel_for, dynamic
   // balancing over many tasks), then the top levels are laid out serially exactly as the serial recursion would
   // (merging equal leaf children), and the subtrees are copied to their places in parallel with their children
   // indices shifted. The result is identical to the serial build.
@@ -162,10 +162,10 @@ struct TreeBuilder {
     std::vector<Top> top;
     std::vector<Task> tasks;
     plan(zero, lg, cut, top, tasks);
-    tbb::parallel_for(size_t(0), tasks.size(), [&](size_t i) {
+    parallel_for(size_t(0), tasks.size(), [&](size_t i) {
       Task& k = tasks[i];
       k.root = node(k.lo, k.lg, nullptr, k.nodes);
-    }, tbb::simple_partitioner());
+    }, Split::each_block);
     resolve(top, tasks, 0);
     // The final size, so `out` is allocated once: a pair per inner top box (merged ones are leaves now), and the
     // nodes of every task that is not a leaf.
@@ -177,7 +177,7 @@ struct TreeBuilder {
     out.resize(total);
     const VoxelNode root = layout(top, tasks, 0, out, cursor);
     if (cursor != total) throw Error("voxel grid: internal error in the parallel build layout");
-    tbb::parallel_for(size_t(0), tasks.size(), [&](size_t i) {
+    parallel_for(size_t(0), tasks.size(), [&](size_t i) {
       Task& k = tasks[i];
       if (k.root.is_leaf()) return;
       const uint32_t shift = uint32_t(k.dest / 2);
@@ -187,7 +187,7 @@ struct TreeBuilder {
         dst[j] = n.is_leaf() ? n : VoxelNode::inner(n.axis(), n.pair() + shift);
       }
       std::vector<VoxelNode>().swap(k.nodes);
-    }, tbb::simple_partitioner());
+    }, Split::each_block);
     return root;
   }
 };
@@ -225,7 +225,7 @@ VoxelTree VoxelTree::build(const VoxelGrid& grid, bool parallel) {
     b.chunks[b.cidx(cx - (lo[0] >> kVoxelChunkBits), cy - (lo[1] >> kVoxelChunkBits), cz - (lo[2] >> kVoxelChunkBits))] = &c;
   });
   std::atomic<uint64_t> voxels{0};
-  tbb::parallel_for(size_t(0), total, [&](size_t i) {
+  parallel_for(size_t(0), total, [&](size_t i) {
     const VoxelChunk* c = b.chunks[i];
     if (!c) return;
     const int16_t first = c->ids[0];
