@@ -598,6 +598,8 @@ uint64_t decompress_limit(lua_State* L, int idx, const char* fn) {
 
 void open_data(lua_State* L, int torte_index) {
   luaL_newmetatable(L, kLongsName);
+  lua_pushcfunction(L, collect_tagged);  // longs own nothing, but a scene given this metatable still must be freed
+  lua_setfield(L, -2, "__gc");
   lua_pushcfunction(L, guarded<longs_index>);
   lua_setfield(L, -2, "__index");
   lua_pushcfunction(L, guarded<longs_len>);

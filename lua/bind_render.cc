@@ -70,11 +70,19 @@ constexpr int kMaxAddNesting = 16;
 // scene:add(obj, ...): shapes, lights and instances (several at once, or arrays of them).
 void add_one(lua_State* L, SceneBuilder& scene, int idx, int depth = 0) {
   if (auto shape = to_object<ShapeDesc>(L, idx)) {
+    if (shape->kind == ShapeDesc::Kind::Voxel && shape->voxels)
+      for (const auto& cell : shape->voxels->cells)
+        if (cell.shapes && cell.shapes->reaches(&scene))
+          throw Error("scene:add: this voxel grid's cells place the group it is added to (a group cannot contain "
+                      "itself)");
     scene.add_shape(*shape);
   } else if (auto light = to_object<Light>(L, idx)) {
     scene.add_light(*light);
   } else if (auto instance = to_object<InstanceDesc>(L, idx)) {
-    if (instance->group.get() == &scene) throw Error("scene:add: a group cannot contain an instance of itself");
+    if (instance->group && instance->group->reaches(&scene))
+      throw Error(instance->group.get() == &scene
+                      ? "scene:add: a group cannot contain an instance of itself"
+                      : "scene:add: the instance's group already places this group (a group cannot contain itself)");
     scene.add_instance(*instance);
   } else if (to_object<SceneBuilder>(L, idx)) {
     throw Error("scene:add: place a group with torte.instance{group = g, transform = ...} (or build it with "

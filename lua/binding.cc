@@ -16,8 +16,6 @@ UserdataHeader* tagged_userdata(lua_State* L, int idx, const void* tag) {
   return h;
 }
 
-namespace {
-
 // One collector for every torte type: it releases what the userdata's own header says it holds, so a userdata
 // that was given another type's metatable is still released as what it is.
 int collect_tagged(lua_State* L) {
@@ -29,8 +27,6 @@ int collect_tagged(lua_State* L) {
   }
   return 0;
 }
-
-}  // namespace
 
 void set_tagged_metatable(lua_State* L, const UserdataHeader& header) {
   if (luaL_newmetatable(L, header.name)) {

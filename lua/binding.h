@@ -82,6 +82,9 @@ UserdataHeader* tagged_userdata(lua_State* L, int idx, const void* tag);
 /// Gives the userdata on the top of the stack the metatable named `header.name`, creating it (a __gc that calls
 /// the header's release, __name, and a __metatable that hides it from getmetatable) on first use.
 void set_tagged_metatable(lua_State* L, const UserdataHeader& header);
+/// The __gc of every metatable torte makes (set_tagged_metatable's and hand-made ones such as torte.data.longs'):
+/// releases what the userdata's own header says it holds, whatever metatable a script gave it.
+int collect_tagged(lua_State* L);
 
 template <class T>
 struct Boxed {

@@ -354,6 +354,22 @@ std::vector<uint64_t> SceneBuilder::fingerprint() const {
   return stamps;
 }
 
+bool SceneBuilder::reaches(const SceneBuilder* target) const {
+  std::unordered_set<const SceneBuilder*> seen;
+  std::vector<const SceneBuilder*> pending{this};
+  while (!pending.empty()) {
+    const SceneBuilder* b = pending.back();
+    pending.pop_back();
+    if (b == target) return true;
+    if (!b || !seen.insert(b).second) continue;
+    for (const InstanceDesc& inst : b->instances_) pending.push_back(inst.group.get());
+    for (const ShapeDesc& shape : b->shapes_)
+      if (shape.kind == ShapeDesc::Kind::Voxel && shape.voxels)
+        for (const auto& cell : shape.voxels->cells) pending.push_back(cell.shapes.get());
+  }
+  return false;
+}
+
 SceneBuilder::~SceneBuilder() {
   // Groups this one alone keeps alive hand their instances to the work list before they die, so each dies with
   // no instances left and no destructor recurses.

@@ -80,6 +80,10 @@ class SceneBuilder {
   /// immutable, so two equal fingerprints mean flatten() would build the same scene.
   std::vector<uint64_t> fingerprint() const;
 
+  /// Whether this builder is `target` or places it, through instances and voxel cell shapes at any depth.
+  /// scene:add refuses what would make a group place itself: such a cycle of shared owners would never be freed.
+  bool reaches(const SceneBuilder* target) const;
+
  private:
   struct Flattening;
   static uint64_t new_stamp();

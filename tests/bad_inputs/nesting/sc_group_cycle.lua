@@ -1,5 +1,6 @@
--- expect: groups nest more than 32 levels deep (does a group contain itself?)
--- Two groups holding instances of each other: refused at torte.render, not unrolled forever.
+-- expect: scene:add: the instance's group already places this group (a group cannot contain itself)
+-- Two groups holding instances of each other: refused when the cycle is made (shared owners in a cycle would
+-- never be freed), not unrolled forever at torte.render.
 local a, b = torte.group(), torte.group()
 a:add(torte.shape.sphere{})
 a:add(torte.instance{group = b, transform = torte.translate(1, 0, 0)})
