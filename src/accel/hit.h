@@ -34,4 +34,11 @@ inline Ray ray_at(const RaySoA& rays, size_t i, float t_max) {
   return r;
 }
 
+/// One ray stored so that soa() views it as a RaySoA of count 1 (the single-ray entry points over the batch ones).
+struct SingleRay {
+  float v[7];
+  explicit SingleRay(const Ray& r) : v{r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.t_max} {}
+  RaySoA soa() const { return {&v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6]}; }
+};
+
 }  // namespace torte

@@ -126,17 +126,6 @@ void ShapeSet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std:
   tri_bvh_.prim_indices = {};
 }
 
-namespace {
-
-// A one-ray RaySoA view of a Ray.
-struct SingleRay {
-  float v[7];
-  explicit SingleRay(const Ray& r) : v{r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.t_max} {}
-  RaySoA soa() const { return {&v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6]}; }
-};
-
-}  // namespace
-
 bool ShapeSet::intersect_one(const Ray& ray, Hit* hit) const {
   Ray r = ray;
   r.t_max = std::min(ray.t_max, hit->t);

@@ -71,15 +71,6 @@ void Scene::release_positions() {
     for (TriangleMesh& m : proto->meshes) release(m);
 }
 
-namespace {
-// A one-ray RaySoA view of a Ray.
-struct SingleRay {
-  float v[7];
-  explicit SingleRay(const Ray& r) : v{r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.t_max} {}
-  RaySoA soa() const { return {&v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6]}; }
-};
-}  // namespace
-
 bool Scene::intersect(Ray& ray, Hit* hit) const {
   Hit h;
   accel_.intersect(SingleRay(ray).soa(), 1, &h, false);
