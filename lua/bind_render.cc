@@ -141,6 +141,9 @@ int scene_frame(lua_State* L) {
   lua_pushvalue(L, fn);
   push_object(L, group);
   lua_call(L, 1, 0);
+  if (group->reaches(scene.get()))
+    throw Error("scene:frame: the frame's group places the scene or group it is framed in (a group cannot "
+                "contain itself)");
   scene->add_instance({group, transform});
   push_object(L, std::move(group));
   return 1;

@@ -355,6 +355,8 @@ std::vector<uint64_t> SceneBuilder::fingerprint() const {
 }
 
 bool SceneBuilder::reaches(const SceneBuilder* target) const {
+  if (this == target) return true;
+  if (!target || !target->placed_.value) return false;  // nothing points at target: no walk needed
   std::unordered_set<const SceneBuilder*> seen;
   std::vector<const SceneBuilder*> pending{this};
   while (!pending.empty()) {

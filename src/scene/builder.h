@@ -54,10 +54,14 @@ class SceneBuilder {
   static constexpr uint64_t kMaxInstancedLights = uint64_t(1) << 20;
 
   void add_shape(ShapeDesc shape) {
+    if (shape.kind == ShapeDesc::Kind::Voxel && shape.voxels)
+      for (const auto& cell : shape.voxels->cells)
+        if (cell.shapes) cell.shapes->placed_.value = true;
     shapes_.push_back(std::move(shape));
     restamp();
   }
   void add_instance(InstanceDesc instance) {
+    if (instance.group) instance.group->placed_.value = true;
     instances_.push_back(std::move(instance));
     restamp();
   }
@@ -92,6 +96,16 @@ class SceneBuilder {
   std::vector<InstanceDesc> instances_;
   std::vector<Light> lights_;
   uint64_t stamp_ = new_stamp();
+  // Whether some builder places this one (an instance or a voxel cell shape points at this object): a builder
+  // nothing places cannot be reached from another, which lets reaches() answer without a walk. It belongs to the
+  // object, not its content, so copies start unplaced and assignments keep their own.
+  struct PlacedFlag {
+    mutable bool value = false;
+    PlacedFlag() = default;
+    PlacedFlag(const PlacedFlag&) {}
+    PlacedFlag& operator=(const PlacedFlag&) { return *this; }
+  };
+  PlacedFlag placed_;
 };
 
 }  // namespace torte
