@@ -3,7 +3,11 @@
 // --skip-missing passes over paths that do not exist (a harness without regressions yet). A crash or a sanitizer report ends
 // the process, and an input running longer than TORTE_REPLAY_TIMEOUT seconds (default 90: inputs take well under a second
 // alone, but a loaded 2-core machine running ASan builds beside has stretched one past 20 s) aborts it with the
-// file's name, so ctest names the input that regressed.
+// file's name, so ctest names the input that regressed. An input that raises the process's peak RSS past
+// TORTE_REPLAY_MAX_RSS_MB (default 1536, as libFuzzer's -rss_limit_mb would) fails the replay with its name: the
+// replay has no malloc limit, and an allocation the promises forbid (a 2 GB buffer for a 2 KB file) may still pass
+// without a crash.
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -32,6 +36,12 @@ void on_alarm(int) {
   std::abort();
 }
 
+long peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024;  // kilobytes on Linux
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -56,6 +66,8 @@ int main(int argc, char** argv) {
   LLVMFuzzerInitialize(&argc, &argv);
   const char* t = std::getenv("TORTE_REPLAY_TIMEOUT");
   const unsigned timeout = t ? unsigned(std::atoi(t)) : 90;
+  const char* m = std::getenv("TORTE_REPLAY_MAX_RSS_MB");
+  const long max_rss_mb = m ? std::atol(m) : 1536;
   std::signal(SIGALRM, on_alarm);
   for (const std::string& f : files) {
     std::ifstream in(f, std::ios::binary);
@@ -64,6 +76,11 @@ int main(int argc, char** argv) {
     alarm(timeout);
     LLVMFuzzerTestOneInput(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
     alarm(0);
+    if (const long rss = peak_rss_mb(); rss > max_rss_mb) {
+      std::fprintf(stderr, "fuzz replay: %s raised the peak RSS to %ld MB (limit %ld MB, TORTE_REPLAY_MAX_RSS_MB)\n",
+                   f.c_str(), rss, max_rss_mb);
+      return 1;
+    }
   }
   std::printf("fuzz replay: %zu inputs ran without a crash\n", files.size());
   return 0;

@@ -15,7 +15,7 @@
 #include "core/memory_budget.h"
 #include "core/quiet_stderr.h"
 #include "core/text.h"
-#include "film/exr_header_check.h"
+#include "film/image_header_check.h"
 
 namespace torte {
 
@@ -126,9 +126,9 @@ Image read_image(const std::string& path) {
   if (const std::string problem = regular_file_problem(path); !problem.empty()) read_error(path, problem);
   // OpenEXR allocates from header values before reading pixels (a string attribute's declared size, a block's
   // decoding buffers): checked here, since OpenImageIO gives no hook before that.
-  const ExrHeaderCheck exr = check_exr_header(path);
-  if (!exr.problem.empty()) read_error(path, exr.problem);
-  reserve_memory(exr.decode_bytes, "image '" + escape_text(path) + "' (OpenEXR decoding buffers)");
+  const ImageHeaderCheck header = check_image_header(path);
+  if (!header.problem.empty()) read_error(path, header.problem);
+  reserve_memory(header.decode_bytes, "image '" + escape_text(path) + "' (OpenEXR decoding buffers)");
   std::unique_ptr<OIIO::ImageInput> in;
   {
     QuietStderr quiet;  // libpng prints its own line for a broken file; OIIO's error string has the message

@@ -14,7 +14,7 @@
 #include "core/memory_budget.h"
 #include "core/quiet_stderr.h"
 #include "core/text.h"
-#include "film/exr_header_check.h"
+#include "film/image_header_check.h"
 
 namespace torte {
 
@@ -192,9 +192,9 @@ void preload(OIIO::TextureSystem& ts, OIIO::TextureSystem::TextureHandle* handle
 std::shared_ptr<const ImageSource> open_image_texture(const std::string& path, const ImageTextureOptions& options) {
   const std::string problem = regular_file_problem(path);
   if (!problem.empty()) throw Error("cannot open image texture '" + escape_text(path) + "': " + problem);
-  const ExrHeaderCheck exr = check_exr_header(path);
-  if (!exr.problem.empty()) throw Error("cannot read image texture '" + escape_text(path) + "': " + exr.problem);
-  reserve_memory(exr.decode_bytes, "image texture '" + escape_text(path) + "' (OpenEXR decoding buffers)");
+  const ImageHeaderCheck header = check_image_header(path);
+  if (!header.problem.empty()) throw Error("cannot read image texture '" + escape_text(path) + "': " + header.problem);
+  reserve_memory(header.decode_bytes, "image texture '" + escape_text(path) + "' (OpenEXR decoding buffers)");
   OIIO::TextureSystem& ts = texture_system();
   OIIO::ImageSpec spec;
   OIIO::TextureSystem::TextureHandle* handle = nullptr;

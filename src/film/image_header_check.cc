@@ -1,4 +1,4 @@
-#include "film/exr_header_check.h"
+#include "film/image_header_check.h"
 
 #include <algorithm>
 #include <cstring>
@@ -41,16 +41,34 @@ struct Part {
   }
 };
 
-}  // namespace
+uint32_t be32(const unsigned char* b) {
+  return uint32_t(b[0]) << 24 | uint32_t(b[1]) << 16 | uint32_t(b[2]) << 8 | uint32_t(b[3]);
+}
 
-ExrHeaderCheck check_exr_header(const std::string& path) {
-  ExrHeaderCheck out;
-  std::ifstream in(path, std::ios::binary);
-  unsigned char head[8];
-  if (!in.read(reinterpret_cast<char*>(head), 8)) return out;
-  if (head[0] != 0x76 || head[1] != 0x2f || head[2] != 0x31 || head[3] != 0x01) return out;
-  in.seekg(0, std::ios::end);
-  const int64_t size = int64_t(in.tellg());
+// PNG: length (big-endian, at most 2^31 - 1), type, data, CRC per chunk, up to IEND.
+ImageHeaderCheck check_png_chunks(std::ifstream& in, int64_t size) {
+  const std::string corrupt = "corrupt PNG file: ";
+  int64_t at = 8;
+  while (at < size) {
+    unsigned char b[8];
+    in.seekg(at);
+    if (!in.read(reinterpret_cast<char*>(b), 8)) return {corrupt + "the file ends inside a chunk header"};
+    const uint32_t length = be32(b);
+    const std::string type = printable(std::string(reinterpret_cast<const char*>(b + 4), 4));
+    if (type == "IEND") return {};
+    const int64_t left = size - at - 12;
+    if (length > 0x7fffffffu || int64_t(length) > left) {
+      if (type == "IDAT") return {};  // cut pixel data: libpng reads it in pieces and reports the truncation
+      return {corrupt + "chunk '" + type + "' claims " + std::to_string(length) + " bytes, " +
+              std::to_string(std::max<int64_t>(left, 0)) + " are left in the file"};
+    }
+    at += 12 + int64_t(length);
+  }
+  return {};
+}
+
+ImageHeaderCheck check_exr_header(std::ifstream& in, int64_t size, const unsigned char* head) {
+  ImageHeaderCheck out;
   in.seekg(8);
   const bool multipart = head[5] & 0x10;  // bit 12 of the little-endian version field
   // A null-terminated string of at most 255 characters (the limit with long names); false if it is not.
@@ -114,6 +132,20 @@ ExrHeaderCheck check_exr_header(const std::string& path) {
     if (next == std::char_traits<char>::eof()) return {corrupt + "the file ends in the list of part headers"};
     if (next == 0) return out;
   }
+}
+
+}  // namespace
+
+ImageHeaderCheck check_image_header(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char head[8];
+  if (!in.read(reinterpret_cast<char*>(head), 8)) return {};
+  in.seekg(0, std::ios::end);
+  const int64_t size = int64_t(in.tellg());
+  if (head[0] == 0x76 && head[1] == 0x2f && head[2] == 0x31 && head[3] == 0x01) return check_exr_header(in, size, head);
+  static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (std::memcmp(head, kPng, 8) == 0) return check_png_chunks(in, size);
+  return {};
 }
 
 }  // namespace torte
