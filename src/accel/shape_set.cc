@@ -213,10 +213,11 @@ SurfaceHit ShapeSet::surface(const Hit& hit) const {
     Vec3f p[3];
     tri_leaves_.triangle(hit.prim, p);
     s = triangle_surface(mesh, &mesh.indices[3 * size_t(ref.local)], p, hit.b1, hit.b2);
+    s.object = ref.mesh;  // local_object_of without a second search of mesh_first_
   } else {
     s = quadric_surface((*quadrics_)[hit.prim - triangle_count()], Vec2f(hit.b1, hit.b2));
+    s.object = local_object_of(hit.prim);
   }
-  s.object = local_object_of(hit.prim);
   return s;
 }
 

@@ -111,6 +111,11 @@ int Distribution1D::sample_discrete(float u, float* pmf_out, float* u_remapped) 
     return -1;
   }
   if (!(u >= 0)) u = 0;  // also maps NaN to 0, so the result below is always a valid bin
+  if (n == 1) {  // one light, a one-triangle emitter: what the search below gives, without it
+    if (pmf_out) *pmf_out = 1;
+    if (u_remapped) *u_remapped = std::min(u, kOneMinusEpsilon);
+    return 0;
+  }
   // The bin is the last i with cdf[i] <= u. Zero-weight bins have cdf[i] == cdf[i+1], so upper_bound skips them.
   int i = int(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin()) - 1;
   i = std::clamp(i, 0, n - 1);
