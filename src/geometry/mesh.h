@@ -54,6 +54,12 @@ struct TriangleMesh {
 // Meshes numbered one after another, mesh m's triangles from mesh_first[m] on (ascending, mesh_first[0] = 0):
 // the mesh holding triangle g, the last one starting at or before g (an empty mesh starts where the next one does).
 inline uint32_t mesh_holding(std::span<const uint32_t> mesh_first, uint32_t g) {
+  // Hits reach meshes in random order, so a search's branches mispredict: a few meshes are counted instead.
+  if (mesh_first.size() <= 16) {
+    uint32_t m = 0;
+    for (size_t j = 1; j < mesh_first.size(); ++j) m += uint32_t(mesh_first[j] <= g);
+    return m;
+  }
   return uint32_t(std::upper_bound(mesh_first.begin(), mesh_first.end(), g) - mesh_first.begin() - 1);
 }
 
