@@ -79,15 +79,10 @@ size_t GeometrySet::accel_bytes() const {
 }
 
 SurfaceHit GeometrySet::surface(const Hit& hit, const Ray* ray) const {
-  SurfaceHit s;
-  if (is_voxel_prim(hit.prim)) {
-    if (!ray) throw Error("internal: the surface of a voxel hit needs its ray");
-    s = (*grids_)[voxel_prim_grid(hit.prim)].surface(hit, *ray);
-    s.object = object_of(hit.prim);
-  } else {
-    s = shapes_.surface(hit);  // its local object, found once per hit
-    s.object += object_base_;
-  }
+  if (!is_voxel_prim(hit.prim)) return shapes_.surface(hit, object_base_);
+  if (!ray) throw Error("internal: the surface of a voxel hit needs its ray");
+  SurfaceHit s = (*grids_)[voxel_prim_grid(hit.prim)].surface(hit, *ray);
+  s.object = object_of(hit.prim);
   return s;
 }
 

@@ -203,22 +203,19 @@ size_t ShapeSet::accel_bytes() const {
          (tri_ref_ ? triangle_count_ * sizeof(uint32_t) + mesh_first_.size() * sizeof(uint32_t) : 0);
 }
 
-SurfaceHit ShapeSet::surface(const Hit& hit) const {
-  SurfaceHit s;
-  if (hit.prim < triangle_count()) {
-    // Positions from the leaves (the meshes may have released theirs, scene/scene.h); normals and uvs from the
-    // mesh, whose triangles are in leaf order.
-    const TriangleRef ref = triangle_ref(hit.prim);
-    const TriangleMesh& mesh = (*meshes_)[ref.mesh];
-    Vec3f p[3];
-    tri_leaves_.triangle(hit.prim, p);
-    s = triangle_surface(mesh, &mesh.indices[3 * size_t(ref.local)], p, hit.b1, hit.b2);
-    s.object = ref.mesh;  // local_object_of without a second search of mesh_first_
-  } else {
-    s = quadric_surface((*quadrics_)[hit.prim - triangle_count()], Vec2f(hit.b1, hit.b2));
-    s.object = local_object_of(hit.prim);
-  }
-  return s;
+SurfaceHit ShapeSet::surface(const Hit& hit, uint32_t object_base) const {
+  // Each branch returns the reconstruction itself (no copy of the 80-byte hit on the way out: per hit, copies
+  // through the levels of Scene::surface cost more than the arithmetic).
+  if (hit.prim >= triangle_count())
+    return quadric_surface((*quadrics_)[hit.prim - triangle_count()], Vec2f(hit.b1, hit.b2),
+                           object_base + local_object_of(hit.prim));
+  // Positions from the leaves (the meshes may have released theirs, scene/scene.h); normals and uvs from the
+  // mesh, whose triangles are in leaf order.
+  const TriangleRef ref = triangle_ref(hit.prim);
+  const TriangleMesh& mesh = (*meshes_)[ref.mesh];
+  Vec3f p[3];
+  tri_leaves_.triangle(hit.prim, p);
+  return triangle_surface(mesh, &mesh.indices[3 * size_t(ref.local)], p, hit.b1, hit.b2, object_base + ref.mesh);
 }
 
 }  // namespace torte

@@ -53,8 +53,9 @@ class ShapeSet {
   /// One ray: updates *hit (keeping its instance) when something closer than min(ray.t_max, hit->t) is hit.
   bool intersect_one(const Ray& ray, Hit* hit) const;
   bool occluded_one(const Ray& ray) const;
-  /// The surface at a triangle or quadric hit of this set; SurfaceHit::object is the local object.
-  SurfaceHit surface(const Hit& hit) const;
+  /// The surface at a triangle or quadric hit of this set; SurfaceHit::object is the local object plus
+  /// `object_base`.
+  SurfaceHit surface(const Hit& hit, uint32_t object_base = 0) const;
   size_t accel_bytes() const;
 
  private:

@@ -5,9 +5,10 @@
 
 namespace torte {
 
-SurfaceHit triangle_surface(const TriangleMesh& mesh, const uint32_t* idx, const Vec3f p[3], float b1, float b2) {
+SurfaceHit triangle_surface(const TriangleMesh& mesh, const uint32_t* idx, const Vec3f p[3], float b1, float b2,
+                            uint32_t object) {
   SurfaceHit s;
-  s.object = 0;
+  s.object = object;
   const Vec3f p0 = p[0], p1 = p[1], p2 = p[2];
   const float b0 = 1 - b1 - b2;
   // Interpolating the vertices is more accurate than o + t d far from the origin.
@@ -46,9 +47,9 @@ SurfaceHit triangle_surface(const TriangleMesh& mesh, const uint32_t* idx, const
   return s;
 }
 
-SurfaceHit quadric_surface(const Quadric& q, Vec2f uv) {
+SurfaceHit quadric_surface(const Quadric& q, Vec2f uv, uint32_t object) {
   SurfaceHit s;
-  s.object = 0;
+  s.object = object;
   const SurfacePoint sp = surface_at(q, uv);
   s.p = sp.p;
   s.ng = s.ns = sp.n;

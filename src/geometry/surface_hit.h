@@ -23,9 +23,10 @@ struct SurfaceHit {
 
 /// The surface of triangle `idx` (three vertex indices into `mesh`'s normals and uvs) with vertices `p` at
 /// barycentrics (b1, b2). Positions come from the caller (the BVH leaves hold them once the mesh released its own).
-/// `object` is left for the caller to set.
-SurfaceHit triangle_surface(const TriangleMesh& mesh, const uint32_t* idx, const Vec3f p[3], float b1, float b2);
-/// The surface of quadric `q` at its parameter `uv` (a hit's (b1, b2)); `object` is left for the caller to set.
-SurfaceHit quadric_surface(const Quadric& q, Vec2f uv);
+/// The hit records `object`.
+SurfaceHit triangle_surface(const TriangleMesh& mesh, const uint32_t* idx, const Vec3f p[3], float b1, float b2,
+                            uint32_t object);
+/// The surface of quadric `q` at its parameter `uv` (a hit's (b1, b2)), recording `object`.
+SurfaceHit quadric_surface(const Quadric& q, Vec2f uv, uint32_t object);
 
 }  // namespace torte

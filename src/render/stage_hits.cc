@@ -1,5 +1,7 @@
 #include "render/stage_hits.h"
 
+#include <new>
+
 #include "core/rng.h"
 #include "render/material_resolve.h"
 #include "render/shade.h"
@@ -21,8 +23,9 @@ void sort_hits(const Scene& scene, const TransportRules& rules, const Sampler& s
       add_escaped_radiance(scene, rules, ps, i, o, d);
       continue;
     }
-    SurfaceHit& s = hits.surface[k];
-    s = scene.surface(Ray{o, d, hit.t}, hit);
+    // Built in place (a prvalue initialising the slot): assigning the returned hit would copy it through the stack,
+    // and those loads of just-stored fields stall store forwarding, once per hit.
+    SurfaceHit& s = *::new (static_cast<void*>(&hits.surface[k])) SurfaceHit(scene.surface(Ray{o, d, hit.t}, hit));
     add_surface_emission(scene, rules, ps, i, o, d, s, hit.t);
     // `direct` follows specular chains only: a non-specular sample just looks for emission at its next hit.
     if (ps.depth[i] >= rules.max_depth || (rules.specular_chains_only && (ps.flags[i] & kPathScattered))) continue;
