@@ -52,6 +52,10 @@ void open_textures(lua_State* L, int torte_index);   // torte.texture.* (lua/bin
 void open_voxels(lua_State* L, int torte_index);     // torte.voxel.*, torte.shape.voxels (lua/bind_voxel.cc)
 void open_data(lua_State* L, int torte_index);       // torte.data.*: files, zlib/gzip, NBT, bit fields (lua/bind_data.cc)
 void set_data_lz4_functions(lua_State* L);  // lz4_block, lz4_compress, xxhash32 into the table on top of the stack
+// unpack_bits into the table on top of the stack, and the torte.data.longs metatable (lua/bind_data_longs.cc).
+void set_data_longs_functions(lua_State* L);
+/// Pushes a new torte.data.longs of `n` entries and returns its `n` values for the caller to fill.
+int64_t* new_longs(lua_State* L, size_t n);
 // Output bound of torte.data's decompressors when the script gives none: generous for a Minecraft chunk (a few
 // MB at most), small enough that a compression bomb fails at once.
 constexpr uint64_t kDefaultDecompressLimit = uint64_t(256) << 20;

@@ -12,6 +12,7 @@
 #include "scene/scene.h"
 #include "scene_helpers.h"
 #include "voxel/voxel_shape.h"
+#include "voxel_scene_helpers.h"
 
 using namespace torte;
 using namespace torte::test;
@@ -40,19 +41,7 @@ std::shared_ptr<VoxelShape> small_world() {
     for (int x = 0; x < 6; ++x)
       for (int y = 0; y < 1 + (x * 3 + z) % 4; ++y)
         if ((x + y + z) % 3 != 0) g.set(x, y, z, int16_t((x + z) % 5 == 0 ? -1 : 1 + (y % 2)));
-  auto shape = std::make_shared<VoxelShape>();
-  shape->tree = std::make_shared<VoxelTree>(VoxelTree::build(g));
-  auto slab = std::make_shared<SceneBuilder>();
-  ShapeDesc cube;
-  cube.mesh = std::make_shared<TriangleMesh>(make_cube());
-  cube.transform = translate({0.5f, 0.25f, 0.5f}) * scale({0.5f, 0.25f, 0.5f});
-  cube.material = matte(0.3f);
-  slab->add_shape(cube);
-  VoxelCellDef cell;
-  cell.id = -1;
-  cell.shapes = slab;
-  shape->cells = {cell};
-  return shape;
+  return slab_world(g, matte(0.3f));
 }
 
 // Root shapes, ~100 instances of a mixed group, nested groups holding it and a voxel grid, and grids alone.
@@ -60,11 +49,7 @@ std::shared_ptr<Scene> many_instances() {
   auto mixed = std::make_shared<SceneBuilder>();
   for (const ShapeDesc& s : mixed_shapes()) mixed->add_shape(s);
   auto grid = std::make_shared<SceneBuilder>();
-  ShapeDesc voxels;
-  voxels.kind = ShapeDesc::Kind::Voxel;
-  voxels.voxels = small_world();
-  voxels.transform = scale({0.15f, 0.15f, 0.15f});
-  grid->add_shape(voxels);
+  grid->add_shape(voxel_desc(small_world(), scale({0.15f, 0.15f, 0.15f})));
   auto nested = std::make_shared<SceneBuilder>();
   nested->add_instance({mixed, translate({0.4f, 0, 0}) * scale({0.5f, 0.7f, 0.5f})});
   nested->add_instance({mixed, translate({-0.4f, 0.3f, 0}) * scale({-0.6f, 0.5f, 0.5f}) * rotate(30, {0, 0, 1})});

@@ -8,9 +8,12 @@
 #include "render/render.h"
 #include "scene/builder.h"
 #include "scene_helpers.h"
+#include "voxel_scene_helpers.h"
 
 using namespace torte;
+using torte::test::slab_world;
 using torte::test::tile_mean;
+using torte::test::voxel_desc;
 
 namespace {
 
@@ -37,14 +40,6 @@ std::shared_ptr<VoxelShape> wall_shape(std::shared_ptr<MaterialDesc> a, std::sha
   return shape;
 }
 
-ShapeDesc voxel_desc(std::shared_ptr<const VoxelShape> v, const Transform& t) {
-  ShapeDesc s;
-  s.kind = ShapeDesc::Kind::Voxel;
-  s.voxels = std::move(v);
-  s.transform = t;
-  return s;
-}
-
 // A small world with cubes of three ids and slab cells (id -1).
 std::shared_ptr<VoxelShape> test_world() {
   VoxelGrid g;
@@ -55,22 +50,11 @@ std::shared_ptr<VoxelShape> test_world() {
       if ((x + 2 * z) % 5 == 0) g.set(x, h, z, -1);
       if ((x * z) % 11 == 3) g.set(x, h + 2, z, 3);
     }
-  auto shape = std::make_shared<VoxelShape>();
-  shape->tree = std::make_shared<VoxelTree>(VoxelTree::build(g));
+  auto shape = slab_world(g, matte(Rgb(0.2f, 0.2f, 0.9f)));
   VoxelCubeDef top;
   top.id = 2;
   top.faces[2] = matte(Rgb(0.1f, 0.9f, 0.1f));
   shape->cubes = {top};
-  auto slab = std::make_shared<SceneBuilder>();
-  ShapeDesc cube;
-  cube.mesh = std::make_shared<TriangleMesh>(make_cube());
-  cube.transform = translate({0.5f, 0.25f, 0.5f}) * scale({0.5f, 0.25f, 0.5f});
-  cube.material = matte(Rgb(0.2f, 0.2f, 0.9f));
-  slab->add_shape(cube);
-  VoxelCellDef cell;
-  cell.id = -1;
-  cell.shapes = slab;
-  shape->cells = {cell};
   return shape;
 }
 

@@ -169,46 +169,51 @@ void trace_bins(const std::vector<Instance>& instances, size_t prototypes, const
   }
 }
 
+// Both queries' batch loop: every ray walks the instance BVH2 round by round (TopLevelWalk), and each round's work
+// items are traced bin by bin (trace_bins) through `trace`, which folds a bin's results into the rays' own so that
+// limit(ray) sees them in the next round. A template, so the per-bin body is resolved at compile time.
+template <class Limit, class Trace>
+void walk_and_trace(const Bvh2& bvh, const std::vector<Bounds3f>& boxes, uint32_t depth,
+                    const std::vector<Instance>& instances, size_t prototypes, const RaySoA& rays, size_t count,
+                    InstanceScratch& s, Limit&& limit, Trace&& trace) {
+  TopLevelWalk walk(bvh, boxes, depth, s);
+  walk.start(rays, count, limit);
+  while (!walk.done()) {
+    walk.round(limit);
+    trace_bins(instances, prototypes, rays, limit, s, trace);
+  }
+}
+
 }  // namespace
 
 void Aggregate::intersect_instances(const RaySoA& rays, size_t count, Hit* hits) const {
   InstanceScratch& s = instance_scratch();
-  const auto limit = [&](uint32_t i) { return std::min(rays.t_max[i], hits[i].t); };
-  TopLevelWalk walk(instance_bvh_, instance_bounds_, instance_depth_, s);
-  walk.start(rays, count, limit);
-  while (!walk.done()) {
-    walk.round(limit);
-    trace_bins(*instances_, prototypes_->size(), rays, limit, s,
-               [&](uint32_t p, size_t first, size_t n, const RaySoA& local) {
-                 // Single-ray kernels (16 rays set up at a time): a bin mixes instance spaces, so neighbours in
-                 // it are not coherent enough for packets (measured slower on scenes/instancing.lua).
-                 Hit* found = at_least(s.hits, n);
-                 (*prototypes_)[p]->geometry.intersect(local, n, found, false);
-                 for (size_t j = 0; j < n; ++j) {
-                   const WorkItem& w = s.binned[first + j];
-                   Hit& h = hits[w.ray];
-                   if (found[j].prim == kNoHit || !(found[j].t < h.t)) continue;
-                   h = found[j];
-                   h.instance = w.instance;
-                 }
-               });
-  }
+  walk_and_trace(instance_bvh_, instance_bounds_, instance_depth_, *instances_, prototypes_->size(), rays, count, s,
+                 [&](uint32_t i) { return std::min(rays.t_max[i], hits[i].t); },
+                 [&](uint32_t p, size_t first, size_t n, const RaySoA& local) {
+                   // Single-ray kernels (16 rays set up at a time): a bin mixes instance spaces, so neighbours in
+                   // it are not coherent enough for packets (measured slower on scenes/instancing.lua).
+                   Hit* found = at_least(s.hits, n);
+                   (*prototypes_)[p]->geometry.intersect(local, n, found, false);
+                   for (size_t j = 0; j < n; ++j) {
+                     const WorkItem& w = s.binned[first + j];
+                     Hit& h = hits[w.ray];
+                     if (found[j].prim == kNoHit || !(found[j].t < h.t)) continue;
+                     h = found[j];
+                     h.instance = w.instance;
+                   }
+                 });
 }
 
 void Aggregate::occluded_instances(const RaySoA& rays, size_t count, uint8_t* blocked) const {
   InstanceScratch& s = instance_scratch();
-  const auto limit = [&](uint32_t i) { return blocked[i] ? 0.0f : rays.t_max[i]; };
-  TopLevelWalk walk(instance_bvh_, instance_bounds_, instance_depth_, s);
-  walk.start(rays, count, limit);
-  while (!walk.done()) {
-    walk.round(limit);
-    trace_bins(*instances_, prototypes_->size(), rays, limit, s,
-               [&](uint32_t p, size_t first, size_t n, const RaySoA& local) {
-                 uint8_t* b = at_least(s.blocked, n);
-                 (*prototypes_)[p]->geometry.occluded(local, n, b, false);
-                 for (size_t j = 0; j < n; ++j) blocked[s.binned[first + j].ray] |= b[j];
-               });
-  }
+  walk_and_trace(instance_bvh_, instance_bounds_, instance_depth_, *instances_, prototypes_->size(), rays, count, s,
+                 [&](uint32_t i) { return blocked[i] ? 0.0f : rays.t_max[i]; },
+                 [&](uint32_t p, size_t first, size_t n, const RaySoA& local) {
+                   uint8_t* b = at_least(s.blocked, n);
+                   (*prototypes_)[p]->geometry.occluded(local, n, b, false);
+                   for (size_t j = 0; j < n; ++j) blocked[s.binned[first + j].ray] |= b[j];
+                 });
 }
 
 }  // namespace torte

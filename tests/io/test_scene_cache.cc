@@ -79,13 +79,27 @@ function same(a, b)
 end
 )";
 
+// Runs kPrelude, then `code`, in a fresh state: "" when both succeed, else the error message.
+std::string run_after_prelude(const char* code) {
+  CacheState st;
+  const std::string prelude = st.run(kPrelude);
+  return prelude.empty() ? st.run(code) : "kPrelude: " + prelude;
+}
+
+// A quadric unit sphere at the origin.
+ShapeDesc unit_sphere() {
+  ShapeDesc s;
+  s.kind = ShapeDesc::Kind::Quadric;
+  s.quadric.kind = QuadricKind::Sphere;
+  s.quadric.radius = 1;
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("scene cache: four cameras on one scene build it once, each image equal to a fresh build's",
           "[lua][scene_cache]") {
-  CacheState st;
-  REQUIRE(st.run(kPrelude) == "");
-  CHECK(st.run(R"(
+  CHECK(run_after_prelude(R"(
 local s = make_scene()
 local imgs = {}
 for i = 1, 4 do imgs[i] = shot(s, i) end
@@ -101,9 +115,7 @@ end
 }
 
 TEST_CASE("scene cache: spp, size, integrator, seed and filter changes reuse the scene", "[lua][scene_cache]") {
-  CacheState st;
-  REQUIRE(st.run(kPrelude) == "");
-  CHECK(st.run(R"(
+  CHECK(run_after_prelude(R"(
 local s = make_scene()
 assert(not shot(s, 1).scene_reused)
 for _, extra in ipairs{{spp = 3}, {width = 9, height = 31}, {integrator = "direct"}, {integrator = "igi"},
@@ -114,11 +126,9 @@ end
 }
 
 TEST_CASE("scene cache: every change of the scene rebuilds it and renders the changed scene", "[lua][scene_cache]") {
-  CacheState st;
-  REQUIRE(st.run(kPrelude) == "");
   // Each step changes the scene in another way after it was rendered; the render that follows must rebuild and
   // give exactly the image of the changed scene built afresh (the same steps applied to a new scene).
-  CHECK(st.run(R"(
+  CHECK(run_after_prelude(R"(
 local steps = {
   function(w) w.s:add(torte.shape.sphere{radius = 0.5, transform = torte.translate(0.8, -0.5, -0.5)}) end,
   function(w) w.s:add(torte.light.point{position = {-2, 2, -2}, intensity = 15}) end,
@@ -171,10 +181,7 @@ end
 TEST_CASE("scene cache: the old scene is released before the new one is built, and a failed build leaves none",
           "[scene_cache]") {
   SceneBuilder b;
-  ShapeDesc sphere;
-  sphere.kind = ShapeDesc::Kind::Quadric;
-  sphere.quadric.kind = QuadricKind::Sphere;
-  sphere.quadric.radius = 1;
+  const ShapeDesc sphere = unit_sphere();
   b.add_shape(sphere);
   lua::SceneCache cache;
   int builds = 0;
@@ -212,17 +219,13 @@ TEST_CASE("scene cache: the old scene is released before the new one is built, a
 }
 
 TEST_CASE("scene cache: fingerprints follow changes, copies and moves of builders", "[scene_cache]") {
-  ShapeDesc cube;
-  cube.kind = ShapeDesc::Kind::Quadric;
-  cube.quadric.kind = QuadricKind::Sphere;
-  cube.quadric.radius = 1;
   auto group = std::make_shared<SceneBuilder>();
   SceneBuilder scene;
   scene.add_instance({group, Transform()});
   const auto f0 = scene.fingerprint();
   CHECK(f0.size() == 2);  // the scene and its group
   CHECK(scene.fingerprint() == f0);
-  group->add_shape(cube);
+  group->add_shape(unit_sphere());
   const auto f1 = scene.fingerprint();
   CHECK(f1 != f0);
   SceneBuilder copy = scene;  // same content: the same fingerprint is right
