@@ -27,6 +27,44 @@ uint64_t lines_per_block(int compression) {
   return compression >= 0 && compression < 10 ? kLines[compression] : 256;
 }
 
+// The largest factor by which decode_bytes() can exceed the compressed bytes, by compression: the decoded block
+// (raw and widened, x4 in decode_bytes) over its stored size: none 1, RLE 64 (a 2-byte run of 128), zlib-based
+// (ZIPS, ZIP, PXR24) 1032, PIZ 4096 (Huffman runs), B44 2.3 and B44A 11 (4x4 blocks of 32 bytes in 14 or 3).
+// DWAA, DWAB and unknown values (whose ratio has no simple bound) are left to the memory budget alone.
+uint64_t max_expansion(int compression) {
+  static constexpr uint64_t kExpansion[] = {1, 64, 1032, 1032, 4096, 1032, 3, 11};
+  return 4 * (compression >= 0 && compression < 8 ? kExpansion[compression] : uint64_t(1) << 40);
+}
+
+// The value size of OpenEXR's fixed-size attribute types, or -1 for the variable-size ones and unknown types.
+int64_t fixed_value_size(const std::string& type) {
+  static const std::pair<const char*, int64_t> kSizes[] = {
+      {"box2i", 16},   {"box2f", 16},   {"chromaticities", 32}, {"compression", 1}, {"double", 8},
+      {"envmap", 1},   {"float", 4},    {"int", 4},             {"keycode", 28},    {"lineOrder", 1},
+      {"m33f", 36},    {"m33d", 72},    {"m44f", 64},           {"m44d", 128},      {"rational", 8},
+      {"tiledesc", 9}, {"timecode", 8}, {"v2i", 8},             {"v2f", 8},         {"v2d", 16},
+      {"v3i", 12},     {"v3f", 12},     {"v3d", 24},            {"deepImageState", 1}};
+  for (const auto& [name, bytes] : kSizes)
+    if (type == name) return bytes;
+  return -1;
+}
+
+// A channel list as OpenEXR reads it (entries of name\0, int32 pixel type (0 uint, 1 half, 2 float) and 12 more
+// bytes, up to an empty name): true when its final \0 is the value's last byte. Adds each channel's bytes to
+// `*pixel_bytes` when given.
+bool channel_list_bytes(const std::vector<unsigned char>& value, uint64_t* pixel_bytes) {
+  size_t i = 0;
+  while (i < value.size() && value[i] != 0) {
+    const void* end = std::memchr(&value[i], 0, value.size() - i);
+    if (!end) return false;
+    const size_t type_at = size_t(static_cast<const unsigned char*>(end) - value.data()) + 1;
+    if (type_at + 16 > value.size()) return false;
+    if (pixel_bytes) *pixel_bytes += le32(&value[type_at]) == 1 ? 2 : 4;
+    i = type_at + 16;
+  }
+  return i + 1 == value.size();
+}
+
 // What one part's header says about its decoding buffers.
 struct Part {
   int64_t width = 0;
@@ -97,35 +135,50 @@ ImageHeaderCheck check_exr_header(std::ifstream& in, int64_t size, const unsigne
       if (value_size < 0 || at + value_size > size)
         return {corrupt + "attribute '" + printable(name) + "' (" + printable(type) + ") claims " +
                 std::to_string(value_size) + " bytes, " + std::to_string(size - at) + " are left in the file"};
-      // The few attributes that size the decoding buffers are read; the others skipped.
-      const bool wanted = (name == "dataWindow" && type == "box2i" && value_size == 16) ||
-                          (name == "compression" && value_size == 1) ||
-                          (name == "tiles" && type == "tiledesc" && value_size == 9) ||
-                          (name == "channels" && type == "chlist");
+      // OpenEXR reads a value of a known type by its structure, not by the declared size: a size that disagrees
+      // would have it read the following attributes from other offsets than this walk (a 51-byte channel list
+      // whose last entry ran on had OpenEXR find a 13.6 M-pixel data window that this walk never saw).
+      if (const int64_t fixed = fixed_value_size(type); fixed >= 0 && fixed != value_size)
+        return {corrupt + "attribute '" + printable(name) + "' (" + printable(type) + ") has " +
+                std::to_string(value_size) + " bytes, its type has " + std::to_string(fixed)};
+      // The attributes that size the decoding buffers, and the variable-size types read by structure, are read;
+      // the others skipped.
+      const bool wanted = (name == "dataWindow" && type == "box2i") || (name == "compression" && type == "compression") ||
+                          (name == "tiles" && type == "tiledesc") || type == "chlist" || type == "preview";
       if (!wanted) {
         in.seekg(value_size, std::ios::cur);
         continue;
       }
       value.resize(size_t(value_size));
       if (!in.read(reinterpret_cast<char*>(value.data()), value_size)) return {corrupt + "the file ends in '" + name + "'"};
-      if (name == "dataWindow") {
+      if (type == "preview") {  // width, height, then 4 bytes a pixel: OpenEXR allocates from the two counts
+        const uint64_t pixels =
+            value_size < 8 ? 0 : uint64_t(uint32_t(le32(&value[0]))) * uint32_t(le32(&value[4]));
+        if (value_size < 8 || pixels > uint64_t(value_size) / 4 || pixels * 4 != uint64_t(value_size) - 8)
+          return {corrupt + "the preview image '" + printable(name) + "' does not have the size its width and height say"};
+      } else if (type == "chlist") {
+        if (!channel_list_bytes(value, name == "channels" ? &part.pixel_bytes : nullptr))
+          return {corrupt + "the channel list '" + printable(name) + "' does not end where its size says"};
+      } else if (name == "dataWindow") {
         part.width = int64_t(le32(&value[8])) - int64_t(le32(&value[0])) + 1;
       } else if (name == "compression") {
         part.compression = value[0];
       } else if (name == "tiles") {
         part.tile_width = uint32_t(le32(&value[0]));
         part.tile_height = uint32_t(le32(&value[4]));
-      } else {  // channels: name\0, int32 pixel type (0 uint, 1 half, 2 float), 12 more bytes; a final \0
-        for (size_t i = 0; i < value.size() && value[i] != 0;) {
-          const unsigned char* end = static_cast<const unsigned char*>(std::memchr(&value[i], 0, value.size() - i));
-          if (!end || size_t(end - value.data()) + 17 > value.size()) break;
-          const size_t type_at = size_t(end - value.data()) + 1;
-          part.pixel_bytes += le32(&value[type_at]) == 1 ? 2 : 4;
-          i = type_at + 16;
-        }
       }
     }
-    out.decode_bytes = std::max(out.decode_bytes, part.decode_bytes());
+    // A block or tile must be decodable from the bytes the file has: its decoded size is bounded by the file's
+    // size times the compression's largest expansion. Beyond a floor that any sane block fits, a header claiming
+    // more is refused before OpenEXR allocates it (a 445-byte file claiming a 13.7 M-pixel row of ZIP blocks made
+    // it allocate 2.6 GB three times).
+    constexpr uint64_t kAnyBlockFits = uint64_t(64) << 20;
+    const uint64_t decode = part.decode_bytes();
+    if (decode > kAnyBlockFits && decode / max_expansion(part.compression) > uint64_t(size))
+      return {corrupt + "a block of " + std::to_string(part.tile_width > 0 ? part.tile_width : part.width) +
+              " pixels wide needs " + std::to_string(decode) + " bytes of decoding buffers, more than a " +
+              std::to_string(size) + "-byte file can decode to"};
+    out.decode_bytes = std::max(out.decode_bytes, decode);
     // Single-part files have one header; multi-part ones end their list of headers with an empty one.
     if (!multipart) return out;
     const int next = in.peek();
