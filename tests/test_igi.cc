@@ -1,8 +1,10 @@
 // Instant global illumination (render/integrator_igi.h) against path tracing on a small closed diffuse Cornell-like box:
 // convergence with a loose clamp and many VPLs, the clamping bias shrinking as g_limit grows, direct <= igi <=
-// path, and determinism across thread counts. Images are compared by tile means (8x8-pixel tiles).
+// path, consistency with the defaults, and determinism across thread counts. Images are compared by tile means
+// (8x8-pixel tiles), or by pixel errors where the noise is what is measured.
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
@@ -217,29 +219,46 @@ double relative_rmse(const Image& a, const Image& reference) {
   }
   return std::sqrt(s / double(a.pixels.size())) / mean(reference);
 }
+
+// Median over pixels of |a - reference| in luminance, relative to the reference's mean luminance: the noise of a
+// typical pixel, blind to the few pixels (corners) where the clamp's bias or a VPL spike would dominate an RMS.
+double median_error(const Image& a, const Image& reference) {
+  std::vector<double> d;
+  double ref_sum = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    d.push_back(std::fabs(double(a.pixels[i].luminance()) - reference.pixels[i].luminance()));
+    ref_sum += reference.pixels[i].luminance();
+  }
+  std::nth_element(d.begin(), d.begin() + std::ptrdiff_t(d.size() / 2), d.end());
+  return d[d.size() / 2] / (ref_sum / double(d.size()));
+}
 }  // namespace
 
-TEST_CASE("igi with its defaults is consistent: its error falls with spp", "[render][igi]") {
-  // VPL families are drawn afresh per sample index (render/vpl.h), so the estimate converges to the clamped
-  // solution: against a long igi render (another seed) the error at 8x the samples must be at most 0.6x
-  // (variance alone: sqrt((1/64 + 1/256) / (1/8 + 1/256)) = 0.39). With one VPL family for every sample, as
-  // before, the ratio stays near 1.
+TEST_CASE("igi with its defaults is consistent: its error against path falls with spp", "[render][igi]") {
+  // Issue 23's acceptance (bench/igi_convergence.lua on the Cornell box) at 32x32: VPL families are drawn afresh
+  // per sample index (render/vpl.h), so against a path reference the median pixel error at 64 spp must be at most
+  // 0.6x that at 8 spp (noise alone: 1/sqrt(8) = 0.35, plus the reference's noise and the clamp's bias). With
+  // one VPL family for every sample the VPLs' error is the same in every sample and the ratio stays near 1.
   const auto scene = cornell_like();
-  RenderSettings s = settings(IntegratorKind::Igi, 256);
-  s.seed = 11;
-  const Image limit = render_box(*scene, s).image;
+  // 4096 spp: the 1024-spp reference's own median pixel error (about 0.9 %) would be half of igi's at 64 spp.
+  // Another seed than igi's, so that the two do not share camera samples.
+  RenderSettings p = settings(IntegratorKind::Path, 4096);
+  p.seed = 7;
+  const Image path = render_box(*scene, p).image;
   const Image igi8 = render_box(*scene, settings(IntegratorKind::Igi, 8)).image;
   const Image igi64 = render_box(*scene, settings(IntegratorKind::Igi, 64)).image;
-  const double e8 = relative_rmse(igi8, limit), e64 = relative_rmse(igi64, limit);
-  const Image& path = path_reference();
-  // The clamp's remaining bias (g_limit 20) on this box: measured -1.9 % in the mean, 4.8 % in the worst 8x8 tile
-  // (a corner), 2.5 % RMS over the tiles; with g_limit 1e4 the same renders reach 0.8 % worst tile at 256 spp.
-  INFO("igi rmse against igi 256 spp: 8 spp " << e8 << ", 64 spp " << e64 << "; the limit against path: mean "
-                                              << mean(limit) / mean(path) - 1 << ", worst tile "
-                                              << max_tile_error(limit, path));
+  const double e8 = median_error(igi8, path), e64 = median_error(igi64, path);
+  // Measured ratio 0.47 (0.36 to 0.47 over igi seeds 0 to 3); with one VPL family for every sample 0.91. At 64
+  // spp the 8x8 tile means carry little noise (about 0.2 %), so they show the clamp's remaining bias (g_limit 20):
+  // -2.1 % in the mean, 5.7 % in the worst tile; a 256-spp render of another seed measured -1.8 % and
+  // 5.0 %, and with g_limit 1e4 it is within 0.6 % in every tile (-0.1 % in the mean).
+  INFO("igi median pixel error against path: 8 spp " << e8 << ", 64 spp " << e64 << " (ratio " << e64 / e8
+                                                     << "); igi 64 spp against path: mean "
+                                                     << mean(igi64) / mean(path) - 1 << ", worst tile "
+                                                     << max_tile_error(igi64, path));
   CHECK(e64 <= 0.6 * e8);
-  CHECK(max_tile_error(limit, path) < 0.07);
-  CHECK(std::fabs(mean(limit) / mean(path) - 1) < 0.03);
+  CHECK(max_tile_error(igi64, path) < 0.07);
+  CHECK(std::fabs(mean(igi64) / mean(path) - 1) < 0.03);
 }
 
 TEST_CASE("igi with a loose clamp converges to path as spp grows", "[render][igi]") {
