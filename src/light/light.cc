@@ -186,13 +186,13 @@ bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u
       float pdf_area;
       sample_area_light_point(scene, light, u, &q, &n, &pdf_area);
       const Vec3f d = q - p;
-      const float dist = length(d);
+      const float dist2 = length_squared(d), dist = std::sqrt(dist2);
       if (!(dist > 0)) return false;
-      s->wi = d / dist;
+      s->wi = d * (1 / dist);  // one division, not three (this runs once per shaded hit)
       s->distance = dist;
       const float cos_l = dot(n, -s->wi);
       if (!light.two_sided && cos_l <= 0) return false;
-      s->pdf = area_to_solid_angle(pdf_area, p, q, n);
+      s->pdf = pdf_area * dist2 / std::fabs(cos_l);  // area_to_solid_angle with the distance at hand
       if (!(s->pdf > 0) || !std::isfinite(s->pdf)) return false;
       s->radiance = light.radiance;
       s->delta = false;
