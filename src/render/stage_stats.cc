@@ -69,7 +69,7 @@ std::string format_stage_table(const StageStats& st, double wall_seconds) {
   char line[200];
   auto row = [&](const std::string& name, const StageTime& t, const char* unit, bool trace) {
     const double share = total > 0 ? 100 * t.seconds / total : 0;
-    int n = std::snprintf(line, sizeof line, "  %-18s %9.3f s %5.1f %% %9llu calls %12llu %s", name.c_str(),
+    int n = std::snprintf(line, sizeof line, "  %-18s %10.4f s %5.1f %% %9llu calls %12llu %s", name.c_str(),
                           t.seconds, share, static_cast<unsigned long long>(t.calls),
                           static_cast<unsigned long long>(t.items), unit);
     if (trace && n > 0 && size_t(n) < sizeof line)
@@ -89,7 +89,7 @@ std::string format_stage_table(const StageStats& st, double wall_seconds) {
           row(std::string("shade ") + shade_stage_name(MaterialType(t)), st.shade[t], "hits", false);
   }
   const double budget = double(st.threads) * wall_seconds;
-  std::snprintf(line, sizeof line, "  %-18s %9.3f s of %d threads x %.3f s wall (%.1f %%; the rest: tile setup, idle)\n",
+  std::snprintf(line, sizeof line, "  %-18s %10.4f s of %d threads x %.3f s wall (%.1f %%; the rest: tile setup, idle)\n",
                 "total", total, st.threads, wall_seconds, budget > 0 ? 100 * total / budget : 0.0);
   out += line;
   return out;
