@@ -33,7 +33,8 @@ std::shared_ptr<Scene> three_material_scene() {
   floor.mesh = std::make_shared<TriangleMesh>(make_polygon({{-3, -1, -3}, {-3, -1, 3}, {3, -1, 3}, {3, -1, -3}}));
   floor.material = material(MaterialType::Lambert, Rgb(0.6f));
   b.add_shape(floor);
-  b.add_shape(sphere_shape(0.6f, translate({-0.7f, -0.4f, 0}), material(MaterialType::CoatedDiffuse, Rgb(0.7f, 0.2f, 0.1f))));
+  const auto plastic = material(MaterialType::CoatedDiffuse, Rgb(0.7f, 0.2f, 0.1f));
+  b.add_shape(sphere_shape(0.6f, translate({-0.7f, -0.4f, 0}), plastic));
   b.add_shape(sphere_shape(0.5f, translate({0.7f, -0.5f, 0}), material(MaterialType::Dielectric, Rgb(1))));
   ShapeDesc lamp = sphere_shape(0.3f, translate({0, 1.5f, -0.5f}), matte(0));
   lamp.emission = Rgb(15);

@@ -89,8 +89,8 @@ std::string format_stage_table(const StageStats& st, double wall_seconds) {
           row(std::string("shade ") + shade_stage_name(MaterialType(t)), st.shade[t], "hits", false);
   }
   const double budget = double(st.threads) * wall_seconds;
-  std::snprintf(line, sizeof line, "  %-18s %10.4f s of %d threads x %.3f s wall (%.1f %%; the rest: tile setup, idle)\n",
-                "total", total, st.threads, wall_seconds, budget > 0 ? 100 * total / budget : 0.0);
+  std::snprintf(line, sizeof line,
+                "  %-18s %10.4f s of %d threads x %.3f s wall (%.1f %%; the rest: tile setup, idle)\n", "total", total, st.threads, wall_seconds, budget > 0 ? 100 * total / budget : 0.0);
   out += line;
   return out;
 }

@@ -101,7 +101,8 @@ TEST_CASE("cli: --stats prints a line per stage whose counts add up", "[cli][sta
   }
 }
 
-TEST_CASE("cli: without --stats no table is printed and torte.render{stats = true} fills image.stages", "[cli][stats]") {
+TEST_CASE("cli: without --stats no table is printed and torte.render{stats = true} fills image.stages",
+          "[cli][stats]") {
   TempDir dir("cli", "no_stats");
   const std::string script = dir.write("two.lua", kTwoMaterials);
   SECTION("off") {
