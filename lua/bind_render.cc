@@ -263,6 +263,8 @@ int l_render(lua_State* L) {
   if (seed < 0) kw.fail("seed", "must be a non-negative integer");
   s.seed = uint64_t(seed);
   if (auto f = kw.object<Filter>("filter", true)) s.filter = *f;
+  // The per-stage profile (image.stages); --stats collects it for every render and prints it.
+  s.stage_stats = kw.boolean("stats", false) || ctx.stats;
   kw.finish();
   // The rules are render()'s (render/render_settings.h); checked here to name the keyword before the build.
   if (const auto problem = find_settings_problem(s)) kw.fail(problem->key, problem->problem);
@@ -315,6 +317,7 @@ int l_render(lua_State* L) {
   ++ctx.renders;
   if (!ctx.quiet) print_scene_summary(flat);
   if (!ctx.quiet || out.stats.interrupted) print_summary(*img, s);
+  if (ctx.stats) std::fputs(format_stage_table(out.stats.stages, out.stats.render_seconds).c_str(), stderr);
   if (out.stats.dropped_samples > 0 && ctx.quiet)
     std::fprintf(stderr, "warning: %llu NaN/Inf samples were dropped\n",
                  static_cast<unsigned long long>(out.stats.dropped_samples));
@@ -373,6 +376,38 @@ int image_mean(lua_State* L) {
   return 3;
 }
 
+// image.stages: nil unless the render collected its profile, else {threads = n, <stage> = {seconds, calls,
+// items}, ..., shade = {<material type> = {...}}} (render/stage_stats.h; shade lists the types that were hit).
+void push_stages(lua_State* L, const StageStats& st) {
+  if (!st.enabled) {
+    lua_pushnil(L);
+    return;
+  }
+  auto push_time = [&](const StageTime& t) {
+    lua_createtable(L, 0, 3);
+    lua_pushnumber(L, t.seconds);
+    lua_setfield(L, -2, "seconds");
+    lua_pushinteger(L, lua_Integer(t.calls));
+    lua_setfield(L, -2, "calls");
+    lua_pushinteger(L, lua_Integer(t.items));
+    lua_setfield(L, -2, "items");
+  };
+  lua_createtable(L, 0, kStageCount + 2);
+  lua_pushinteger(L, st.threads);
+  lua_setfield(L, -2, "threads");
+  for (int i = 0; i < kStageCount; ++i) {
+    push_time(st.stage[i]);
+    lua_setfield(L, -2, stage_name(Stage(i)));
+  }
+  lua_newtable(L);
+  for (int t = 0; t < kShadedMaterialTypeCount; ++t)
+    if (st.shade[t].calls != 0) {
+      push_time(st.shade[t]);
+      lua_setfield(L, -2, shade_stage_name(MaterialType(t)));
+    }
+  lua_setfield(L, -2, "shade");
+}
+
 int image_index(lua_State* L) {
   auto img = to_object<RenderedImage>(L, 1);
   if (!img) throw Error("image fields need an image");
@@ -393,6 +428,8 @@ int image_index(lua_State* L) {
     lua_pushboolean(L, img->scene_reused);
   } else if (key == "interrupted") {
     lua_pushboolean(L, img->stats.interrupted);
+  } else if (key == "stages") {
+    push_stages(L, img->stats.stages);
   } else {
     static const luaL_Reg methods[] = {{"write", guarded<image_write>}, {"pixel", guarded<image_pixel>},
                                        {"mean", guarded<image_mean>}, {nullptr, nullptr}};

@@ -267,6 +267,7 @@ int run_script(const RunOptions& options) {
   ctx.spp_override = options.spp_override;
   ctx.seed_override = options.seed_override;
   ctx.quiet = options.quiet;
+  ctx.stats = options.stats;
   ctx.cancel = options.cancel;
   std::optional<FilePolicy> policy;
   if (options.sandbox) {

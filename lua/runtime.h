@@ -16,6 +16,7 @@ struct RunOptions {
   int spp_override = -1;
   int64_t seed_override = -1;
   bool quiet = false;
+  bool stats = false;  // --stats: a per-stage profile (render/stage_stats.h) on stderr after every render
   const std::atomic<bool>* cancel = nullptr;  // renders stop when it becomes true (main: torte::interrupt_flag())
   // --sandbox (docs/security.md): the restricted libraries and the file policy of lua/sandbox.h.
   bool sandbox = false;

@@ -32,6 +32,7 @@ struct RunContext {
   int spp_override = -1;        // --spp
   int64_t seed_override = -1;   // --seed
   bool quiet = false;           // --quiet
+  bool stats = false;           // --stats: every render collects and prints its per-stage profile
   const std::atomic<bool>* cancel = nullptr;  // set by Ctrl-C
   bool interrupted = false;     // a render was cut short: later renders are refused
   // Totals over the run, for the closing summary.

@@ -36,6 +36,7 @@ const std::string kUsage =
     "  --spp N                 override every render's samples per pixel\n"
     "  --seed N                override every render's random seed\n"
     "  --quiet                 no progress or summary on stderr\n"
+    "  --stats                 after every render, time, calls and rays per render stage on stderr\n"
     "  --max-memory SIZE       the memory torte may use, e.g. 8G or 512M (default: 3/4 of the RAM)\n"
     "  --lua-memory SIZE       the memory the script's Lua heap may hold (default: half of --max-memory)\n"
     "  --lua-instructions N    stop the script after N Lua instructions (default: 0, no limit; under\n"
@@ -106,6 +107,8 @@ int main(int argc, char** argv) {
       return 0;
     } else if (a == "--quiet" || a == "-q") {
       options.quiet = true;
+    } else if (a == "--stats") {
+      options.stats = true;
     } else if (a == "--threads") {
       threads = int(parse_integer("--threads", option_value(argc, argv, i, "--threads"), 1, 4096));
     } else if (a == "--spp") {

@@ -31,8 +31,12 @@ class IgiHook {
 
   void after_bounce(Wavefront& w, RenderStats& stats) {
     shadows_.clear();
+    StageClock& clock = w.clock();
     auto flush = [&] {
+      if (shadows_.size() == 0) return;
+      clock.lap(stats.stages[Stage::VplGather], shadows_.size());  // the queueing since the last lap
       trace_shadows(w.scene(), shadows_, w.paths(), w.occluded_scratch(), stats, true);  // runs towards one VPL
+      clock.lap(stats.stages[Stage::Shadows], shadows_.size());
       shadows_.clear();
     };
     for_each_shaded_type([&](auto t) {
@@ -40,6 +44,7 @@ class IgiHook {
                        begin_, flush);
     });
     flush();
+    clock.lap(stats.stages[Stage::VplGather], 0);  // what followed the last flush
   }
 
  private:
@@ -68,13 +73,17 @@ class IgiDriver {
   void begin_pass(int first_sample, int pass_spp) {
     vpls_ = generate_vpls(scene_, settings_, uint32_t(first_sample), pass_spp);
     light_rays_ += vpls_.light_rays;
+    vpl_pass_.add(vpls_.profile);
   }
   std::unique_ptr<Worker> make_worker() {
     const TransportRules rules = DirectSettings::from(settings_).rules();
     return std::make_unique<Worker>(Worker{Wavefront(scene_, camera_, settings_, sampler_, rules),
                                            IgiHook(vpls_, settings_.seed)});
   }
-  void finish(RenderStats& stats) { stats.extension_rays += light_rays_; }  // IGI's light paths
+  void finish(RenderStats& stats) {
+    stats.extension_rays += light_rays_;  // IGI's light paths
+    stats.stages[Stage::VplPass].add(vpl_pass_);
+  }
 
  private:
   const Scene& scene_;
@@ -83,6 +92,7 @@ class IgiDriver {
   Sampler sampler_;
   VplStore vpls_;
   uint64_t light_rays_ = 0;
+  StageTime vpl_pass_;  // the passes' VplStore::profile
 };
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "camera/camera.h"
 #include "film/filter.h"
+#include "render/stage_stats.h"
 
 namespace torte {
 
@@ -44,6 +45,7 @@ struct RenderSettings {
   int light_paths = 64;
   float g_limit = 20;
   float vpl_roulette = 0.25f;
+  bool stage_stats = false;  // collect RenderStats::stages (torte --stats): one clock reading per stage call
 };
 
 /// What the shared stages need to know about the light transport an integrator wants.
@@ -60,6 +62,7 @@ struct RenderStats {
   uint64_t samples_done = 0;     // camera samples that reached the film (or were dropped)
   double render_seconds = 0;
   bool interrupted = false;
+  StageStats stages;  // the per-stage profile, filled when RenderSettings::stage_stats is set
   uint64_t rays() const { return camera_rays + extension_rays + shadow_rays; }
   void add(const RenderStats& o) {
     camera_rays += o.camera_rays;
@@ -67,6 +70,7 @@ struct RenderStats {
     shadow_rays += o.shadow_rays;
     dropped_samples += o.dropped_samples;
     samples_done += o.samples_done;
+    stages.add(o.stages);
   }
 };
 

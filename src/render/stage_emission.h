@@ -1,6 +1,7 @@
-// Stages: light found by the path's own rays, weighted by MIS against the light-sampling strategy that could
+// Stage: light found by the path's own rays, weighted by MIS against the light-sampling strategy that could
 // have found it: escaped rays (infinite lights) and hits on emitting surfaces (area lights, emitting voxel faces
-// and cell shapes).
+// and cell shapes). Runs after sort_hits (stage_hits.h), which reconstructs the surfaces and changes no path
+// state emission reads.
 #pragma once
 #include <cstdint>
 
@@ -47,6 +48,20 @@ inline void add_surface_emission(const Scene& scene, const TransportRules& rules
     const Light& light = scene.lights[size_t(e->light)];
     const float w = emission_weight(scene, ps, rules, i, e->light, light_pdf(scene, light, o, d, &s, t));
     ps.radiance[i] += ps.beta[i] * e->radiance * w;
+  }
+}
+
+/// Adds to each path of `rays` the light its ray found: infinite lights if it escaped, else the emission of the
+/// surface it hit (hits.surface, as sort_hits reconstructed it).
+inline void add_emission(const Scene& scene, const TransportRules& rules, const RayQueue& rays, const HitQueue& hits,
+                         PathState& ps) {
+  for (size_t k = 0; k < rays.size(); ++k) {
+    const uint32_t i = rays.path[k];
+    const Hit& hit = hits.hit[k];
+    if (hit.prim == kNoHit)
+      add_escaped_radiance(scene, rules, ps, i, rays.origin(k), rays.dir(k));
+    else
+      add_surface_emission(scene, rules, ps, i, rays.origin(k), rays.dir(k), hits.surface[k], hit.t);
   }
 }
 

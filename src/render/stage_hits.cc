@@ -5,7 +5,6 @@
 #include "core/rng.h"
 #include "render/material_resolve.h"
 #include "render/shade.h"
-#include "render/stage_emission.h"
 
 namespace torte {
 
@@ -18,15 +17,11 @@ void sort_hits(const Scene& scene, const TransportRules& rules, const Sampler& s
   for (size_t k = 0; k < n; ++k) {
     const uint32_t i = rays.path[k];
     const Hit& hit = hits.hit[k];
-    const Vec3f o = rays.origin(k), d = rays.dir(k);
-    if (hit.prim == kNoHit) {
-      add_escaped_radiance(scene, rules, ps, i, o, d);
-      continue;
-    }
+    if (hit.prim == kNoHit) continue;
     // Built in place (a prvalue initialising the slot): assigning the returned hit would copy it through the stack,
     // and those loads of just-stored fields stall store forwarding, once per hit.
-    SurfaceHit& s = *::new (static_cast<void*>(&hits.surface[k])) SurfaceHit(scene.surface(Ray{o, d, hit.t}, hit));
-    add_surface_emission(scene, rules, ps, i, o, d, s, hit.t);
+    SurfaceHit& s = *::new (static_cast<void*>(&hits.surface[k]))
+        SurfaceHit(scene.surface(Ray{rays.origin(k), rays.dir(k), hit.t}, hit));
     // `direct` follows specular chains only: a non-specular sample just looks for emission at its next hit.
     if (ps.depth[i] >= rules.max_depth || (rules.specular_chains_only && (ps.flags[i] & kPathScattered))) continue;
     ps.footprint[i] += spread * hit.t;  // ray-cone width at the hit

@@ -1,5 +1,5 @@
-// Stage: from trace results to shading queues. Escaped rays and emitters add their light (stage_emission.h);
-// paths that go on get their surface reconstructed and their material resolved (Mix, Bump), and their queue
+// Stage: from trace results to shading queues. Every hit gets its surface reconstructed (the emission stage,
+// stage_emission.h, reads it too); paths that go on get their material resolved (Mix, Bump), and their queue
 // slots are counting-sorted by material type into one contiguous queue per type.
 #pragma once
 #include <cstdint>
@@ -21,7 +21,8 @@ struct MaterialQueues {
   }
 };
 
-/// Processes the hits of `rays`; `spread` is the camera's ray-cone spread angle.
+/// Reconstructs hits.surface[k] for every ray k that hit and queues the paths that go on; `spread` is the
+/// camera's ray-cone spread angle.
 void sort_hits(const Scene& scene, const TransportRules& rules, const Sampler& sampler, float spread,
                const RayQueue& rays, HitQueue& hits, PathState& paths, MaterialQueues& out);
 

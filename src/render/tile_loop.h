@@ -62,7 +62,10 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
     driver.begin_pass(first_sample, pass_spp);
     parallel_for_blocks(size_t(0), tiles.size(), 1, [&](IndexRange<size_t> range) {
       Slot& w = slots.local();
-      if (!w.worker) w.worker = driver.make_worker();
+      if (!w.worker) {
+        w.worker = driver.make_worker();
+        w.stats.stages.enabled = settings.stage_stats;
+      }
       for (size_t t = range.begin(); t != range.end(); ++t) {
         if (cancelled() || texture_failed()) return;
         const detail::Tile& tile = tiles[t];
@@ -85,7 +88,11 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
 
   if (const std::string failure = detail::texture_failure(scene); !failure.empty()) throw Error(failure);
   RenderOutput out;
-  for (const Slot& w : slots) out.stats.add(w.stats);
+  for (const Slot& w : slots) {
+    out.stats.add(w.stats);
+    if (w.worker) ++out.stats.stages.threads;
+  }
+  out.stats.stages.enabled = settings.stage_stats;
   driver.finish(out.stats);
   out.stats.interrupted = cancelled() && out.stats.samples_done < samples_total;
   out.image = film.image();

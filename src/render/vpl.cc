@@ -125,12 +125,21 @@ VplStore generate_vpls(const Scene& scene, const RenderSettings& settings, uint3
     samplers.emplace_back(mix_bits(settings.seed ^ (uint64_t(first_family + uint32_t(f)) + 1) * 0x9e3779b97f4a7c15ull));
   std::vector<std::vector<RawVpl>> raw(static_cast<size_t>(sets));
   std::vector<uint64_t> rays(static_cast<size_t>(sets), 0);
+  // --stats: one clock pair per set (its light paths), summed over threads; then the serial concatenation.
+  std::vector<double> seconds(settings.stage_stats ? size_t(sets) : 0, 0.0);
   parallel_for(0, sets, [&](int set) {
+    StageClock clock(settings.stage_stats);
+    clock.start();
     const Sampler& sampler = samplers[size_t(set / settings.vpl_sets)];
     for (uint32_t j = 0; j < uint32_t(settings.light_paths); ++j)
       rays[size_t(set)] +=
           trace_light_path(scene, settings, sampler, set % settings.vpl_sets, j, raw[size_t(set)]);
+    StageTime t;
+    clock.lap(t, 0);
+    if (settings.stage_stats) seconds[size_t(set)] = t.seconds;
   });
+  StageClock concatenation(settings.stage_stats);
+  concatenation.start();
 
   size_t total = 0;
   for (const auto& v : raw) total += v.size();
@@ -156,6 +165,12 @@ VplStore generate_vpls(const Scene& scene, const RenderSettings& settings, uint3
       });
     }
     store.set_begin[size_t(set) + 1] = uint32_t(store.p.size());
+  }
+  if (settings.stage_stats) {
+    concatenation.lap(store.profile, 0);
+    for (const double s : seconds) store.profile.seconds += s;
+    store.profile.calls = uint64_t(sets);
+    store.profile.items = store.light_rays;
   }
   return store;
 }

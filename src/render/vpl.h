@@ -38,6 +38,7 @@ struct VplStore {
   PerShadedType<BsdfArray> bsdfs;
   float g_max = kInfinity;  // absolute clamp of the geometry term
   uint64_t light_rays = 0;  // rays traced to build the VPLs
+  StageTime profile;        // with RenderSettings::stage_stats: thread seconds, sets and light rays of the build
 
   size_t size() const { return p.size(); }
   int set_count() const { return int(set_begin.size()) - 1; }
