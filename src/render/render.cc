@@ -7,6 +7,7 @@
 #include "film/film.h"
 #include "render/integrator_direct.h"
 #include "render/integrator_igi.h"
+#include "render/integrator_lt.h"
 #include "render/integrator_path.h"
 #include "render/tile_loop.h"
 
@@ -55,6 +56,7 @@ RenderOutput render(const Scene& scene, const Camera& camera, const RenderSettin
     case IntegratorKind::Path: return render_path(scene, camera, settings, progress, cancel);
     case IntegratorKind::Direct: return render_direct(scene, camera, settings, progress, cancel);
     case IntegratorKind::Igi: return render_igi(scene, camera, settings, progress, cancel);
+    case IntegratorKind::Lt: return render_lt(scene, camera, settings, progress, cancel);
   }
   throw Error("internal: unknown integrator");
 }

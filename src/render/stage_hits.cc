@@ -20,13 +20,13 @@ void sort_hits(const Scene& scene, const TransportRules& rules, const Sampler& s
     const Hit& hit = hits.hit[k];
     const Vec3f o = rays.origin(k), d = rays.dir(k);
     if (hit.prim == kNoHit) {
-      add_escaped_radiance(scene, rules, ps, i, o, d);
+      if (rules.add_emission) add_escaped_radiance(scene, rules, ps, i, o, d);
       continue;
     }
     // Built in place (a prvalue initialising the slot): assigning the returned hit would copy it through the stack,
     // and those loads of just-stored fields stall store forwarding, once per hit.
     SurfaceHit& s = *::new (static_cast<void*>(&hits.surface[k])) SurfaceHit(scene.surface(Ray{o, d, hit.t}, hit));
-    add_surface_emission(scene, rules, ps, i, o, d, s, hit.t);
+    if (rules.add_emission) add_surface_emission(scene, rules, ps, i, o, d, s, hit.t);
     // `direct` follows specular chains only: a non-specular sample just looks for emission at its next hit.
     if (ps.depth[i] >= rules.max_depth || (rules.specular_chains_only && (ps.flags[i] & kPathScattered))) continue;
     ps.footprint[i] += spread * hit.t;  // ray-cone width at the hit
