@@ -148,3 +148,25 @@ TEST_CASE("lt refuses a camera it cannot connect to; the other integrators accep
   s.integrator = IntegratorKind::Path;
   CHECK_NOTHROW(render_view(*scene, cam, s));
 }
+
+TEST_CASE("lt interrupted mid-pass keeps its splats normalised by the light paths traced", "[render][lt]") {
+  const auto scene = cornell_like();
+  // Cancels once a third of the samples are done: in the middle of a pass, with tiles of it left undone.
+  struct CancelAt : ProgressSink {
+    std::atomic<bool>* cancel;
+    explicit CancelAt(std::atomic<bool>* c) : cancel(c) {}
+    void update(uint64_t done, uint64_t total, uint64_t, double) override {
+      if (done * 3 >= total) cancel->store(true);
+    }
+  };
+  const RenderSettings s = settings(IntegratorKind::Lt, 32, 64);
+  std::atomic<bool> cancel{false};
+  CancelAt sink(&cancel);
+  const RenderOutput part = render(*scene, Camera(box_camera(), s.width, s.height), s, &sink, &cancel);
+  const RenderOutput full = render_view(*scene, box_camera(), s);
+  CHECK(part.stats.interrupted);
+  CHECK(part.stats.samples_done < uint64_t(32 * 32 * 64));
+  CHECK(part.stats.samples_done % uint64_t(16 * 16) == 0);  // whole tiles only
+  INFO("interrupted mean " << mean(part.image) << ", full " << mean(full.image));
+  CHECK(mean(part.image) == Approx(mean(full.image)).epsilon(0.03));
+}

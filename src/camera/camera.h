@@ -1,4 +1,5 @@
-// Cameras map a continuous raster position (pixels, (0,0) = top-left corner of the image) to a world ray.
+// Cameras map a continuous raster position (pixels, (0,0) = top-left corner of the image) to a world ray, and
+// connect world points back to the lens for light paths (importance We, its densities, sample_wi).
 // Camera space: +z forward, +y up, +x to the image's left (right-handed; see look_at).
 #pragma once
 #include <string>
