@@ -25,7 +25,8 @@
 //
 // Light tracing finds caustics (L S+ D E) that path tracing samples badly, but cannot see paths through
 // specular surfaces in front of the camera (L ... D S+ E, e.g. a mirror's reflection): like pbrt-v4's
-// LightPathIntegrator, those are missing.
+// LightPathIntegrator, those are missing. Glossy surfaces seen by the camera are reached only through
+// connections whose BSDF value is rarely large: the estimate is heavy-tailed there and converges slowly.
 #pragma once
 #include <atomic>
 

@@ -48,7 +48,8 @@ void trace_camera_connections(const Scene& scene, const CameraQueue& connections
   occluded.resize(n);
   scene.occluded(connections.soa(), n, occluded.data(), false);
   for (size_t k = 0; k < n; ++k)
-    if (!occluded[k]) film.splat(splats, connections.raster[k], connections.contribution[k]);
+    if (!occluded[k] && !film.splat(splats, connections.raster[k], connections.contribution[k]))
+      ++stats.dropped_samples;  // only a NaN or infinite value: connections land inside the image
   stats.shadow_rays += n;
 }
 

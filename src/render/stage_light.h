@@ -39,7 +39,7 @@ void generate_light_rays(std::span<const SampleRequest> requests, const Scene& s
                          PathState& paths, RayQueue& rays);
 
 /// Traces the connections and splats the unoccluded ones into `splats`, in queue order. `occluded` is
-/// scratch. Counts the rays in stats.shadow_rays.
+/// scratch. Counts the rays in stats.shadow_rays and non-finite splats (dropped) in stats.dropped_samples.
 void trace_camera_connections(const Scene& scene, const CameraQueue& connections, const Film& film,
                               SplatBuffer& splats, std::vector<uint8_t>& occluded, RenderStats& stats);
 
