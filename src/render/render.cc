@@ -44,7 +44,9 @@ std::string texture_failure(const Scene& scene) {
 
 uint64_t render_memory_bytes(const RenderSettings& s) {
   const uint64_t pixels = uint64_t(std::max(s.width, 0)) * uint64_t(std::max(s.height, 0));
-  return pixels * (sizeof(PixelSum) + sizeof(Rgb));  // the film, then the image made from it
+  // The film, then the image made from it; light tracing's film also holds a splat sum per pixel.
+  const uint64_t splats = s.integrator == IntegratorKind::Lt ? sizeof(Rgb) : 0;
+  return pixels * (sizeof(PixelSum) + sizeof(Rgb) + splats);
 }
 
 RenderOutput render(const Scene& scene, const Camera& camera, const RenderSettings& settings,
