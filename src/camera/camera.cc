@@ -73,10 +73,6 @@ Ray Camera::generate_ray(Vec2f raster, Vec2f lens_u) const {
   return {c2w.apply_point(o), normalize(c2w.apply_vector(focus - o)), kInfinity};
 }
 
-}  // namespace torte
-
-namespace torte {
-
 std::string Camera::connect_problem() const {
   // The columns of the 3x3 part must be orthonormal (up to rounding): then distances, areas and angles are the
   // same in camera and world space.
