@@ -248,8 +248,10 @@ int l_render(lua_State* L) {
     s.integrator = IntegratorKind::Direct;
   } else if (integrator == "igi") {
     s.integrator = IntegratorKind::Igi;
+  } else if (integrator == "lt") {
+    s.integrator = IntegratorKind::Lt;
   } else {
-    kw.fail("integrator", "must be \"path\", \"direct\" or \"igi\", got \"" + integrator + "\"");
+    kw.fail("integrator", "must be \"path\", \"direct\", \"igi\" or \"lt\", got \"" + integrator + "\"");
   }
   // The seed's direct-lighting renderer samples every light at every hit; path tracing picks one by power. igi
   // handles direct light as direct does.
@@ -268,6 +270,9 @@ int l_render(lua_State* L) {
   kw.finish();
   // The rules are render()'s (render/render_settings.h); checked here to name the keyword before the build.
   if (const auto problem = find_settings_problem(s)) kw.fail(problem->key, problem->problem);
+  if (s.integrator == IntegratorKind::Lt)  // light paths connect to the camera: it must allow that
+    if (const std::string why = Camera(*camera, s.width, s.height).connect_problem(); !why.empty())
+      kw.fail("camera", "cannot be used with integrator \"lt\": " + why);
   if (ctx.spp_override > 0) s.spp = ctx.spp_override;
   if (ctx.seed_override >= 0) s.seed = uint64_t(ctx.seed_override);
   if (ctx.interrupted || interrupt_requested()) throw Interrupted("interrupted: torte.render was not started");

@@ -7,6 +7,7 @@
 #include "film/film.h"
 #include "render/integrator_direct.h"
 #include "render/integrator_igi.h"
+#include "render/integrator_lt.h"
 #include "render/integrator_path.h"
 #include "render/tile_loop.h"
 
@@ -43,7 +44,9 @@ std::string texture_failure(const Scene& scene) {
 
 uint64_t render_memory_bytes(const RenderSettings& s) {
   const uint64_t pixels = uint64_t(std::max(s.width, 0)) * uint64_t(std::max(s.height, 0));
-  return pixels * (sizeof(PixelSum) + sizeof(Rgb));  // the film, then the image made from it
+  // The film, then the image made from it; light tracing's film also holds a splat sum per pixel.
+  const uint64_t splats = s.integrator == IntegratorKind::Lt ? sizeof(Rgb) : 0;
+  return pixels * (sizeof(PixelSum) + sizeof(Rgb) + splats);
 }
 
 RenderOutput render(const Scene& scene, const Camera& camera, const RenderSettings& settings,
@@ -55,6 +58,7 @@ RenderOutput render(const Scene& scene, const Camera& camera, const RenderSettin
     case IntegratorKind::Path: return render_path(scene, camera, settings, progress, cancel);
     case IntegratorKind::Direct: return render_direct(scene, camera, settings, progress, cancel);
     case IntegratorKind::Igi: return render_igi(scene, camera, settings, progress, cancel);
+    case IntegratorKind::Lt: return render_lt(scene, camera, settings, progress, cancel);
   }
   throw Error("internal: unknown integrator");
 }

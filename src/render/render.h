@@ -1,8 +1,9 @@
 // The public entry point: render(scene, camera, settings) runs the integrator settings.integrator asks for
-// (render/integrator_path.h, integrator_direct.h, integrator_igi.h), each a small driver over the shared stages
-// of render/wavefront.h, over progressive passes of image tiles (render/tile_loop.h). Every pixel belongs to one
-// tile and each camera sample only contributes to its own pixel (filter importance sampling), so the image is
-// bitwise identical for any thread count or schedule.
+// (render/integrator_path.h, integrator_direct.h, integrator_igi.h, integrator_lt.h), each a small driver over
+// the shared stages of render/wavefront.h, over progressive passes of image tiles (render/tile_loop.h). Every
+// pixel belongs to one tile and each camera sample only contributes to its own pixel (filter importance
+// sampling); light tracing's splats go to one buffer per tile, merged in tile order. So the image is bitwise
+// identical for any thread count or schedule.
 #pragma once
 #include <atomic>
 #include <cstdint>

@@ -17,6 +17,7 @@ enum class IntegratorKind : uint8_t {
   Path,    // path tracing: next-event estimation + BSDF sampling with MIS, Russian roulette
   Direct,  // direct lighting only (MIS between light and BSDF sampling); equals Path at max_depth 1
   Igi,     // instant global illumination (render/integrator_igi.h): Direct plus indirect light from VPLs
+  Lt,      // light tracing (render/integrator_lt.h): light paths connected to the camera and splatted
 };
 
 // Direct and Igi follow camera paths through specular chains only (the lighting they leave out is reached by
@@ -54,6 +55,7 @@ struct TransportRules {
   int rr_depth = 3;                // Russian roulette from this many events on
   bool sample_all_lights = false;  // next-event estimation towards every light instead of one by power
   bool specular_chains_only = false;  // end at the next hit after the first non-specular event (direct light)
+  bool add_emission = true;  // false for light paths: emitters their rays find add nothing (add_emission)
 };
 
 struct RenderStats {

@@ -8,6 +8,7 @@
 // Between 3 and 4 an integrator may look at the queue (OnShaded, e.g. IGI gathers VPL light at the hits).
 // Templated on the material type, so BSDF calls inline and no hit pays a per-hit dispatch.
 #pragma once
+#include <cmath>
 #include <span>
 #include <type_traits>
 #include <utility>
@@ -93,16 +94,23 @@ inline void push_shadow_ray(ShadowQueue& shadows, const SurfaceHit& s, Vec3f wi,
 
 // Continues the path of queue slot `slot` with the BSDF sample `bs` (drawn in `frame`, wo_local being the
 // outgoing direction): checks the sides, updates throughput and flags, applies Russian roulette and pushes the
-// next ray to ctx.next. A path that stops here is simply not pushed.
+// next ray to ctx.next. A path that stops here is simply not pushed. Light paths (TransportMode::Importance)
+// also take the adjoint shading-normal factor |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|) (Veach 1997, 5.3).
 inline void continue_path(const ShadeContext& ctx, uint32_t slot, const Frame& frame, Vec3f wo_local,
-                          const BsdfSample& bs) {
+                          const BsdfSample& bs, TransportMode mode = TransportMode::Radiance) {
   PathState& ps = ctx.paths;
   const uint32_t i = ctx.rays.path[slot];
   const SurfaceHit& s = ctx.hits.surface[slot];
   const uint16_t depth = ps.depth[i];
   const Vec3f wi = frame.to_world(bs.wi);
-  if (!consistent_sides(s.ng, -ctx.rays.dir(slot), wi, wo_local, bs.wi)) return;
+  const Vec3f wo = -ctx.rays.dir(slot);
+  if (!consistent_sides(s.ng, wo, wi, wo_local, bs.wi)) return;
   Rgb beta = ps.beta[i] * bs.weight();
+  if (mode == TransportMode::Importance) {
+    const float adjoint = std::fabs(wo_local.z) * std::fabs(dot(wi, s.ng)) / (std::fabs(dot(wo, s.ng)) * std::fabs(bs.wi.z));
+    if (!(adjoint > 0) || !std::isfinite(adjoint)) return;
+    beta = beta * adjoint;
+  }
   if (bs.is_transmission()) ps.eta_scale[i] *= bs.eta * bs.eta;
   // Russian roulette on the throughput without the eta^2 radiance scaling of refraction (pbrt-v4), so paths
   // inside glass are not cut for carrying "too much" radiance; compensated by 1/q (unbiased).

@@ -55,6 +55,7 @@ inline void add_surface_emission(const Scene& scene, const TransportRules& rules
 /// surface it hit (hits.surface, as sort_hits reconstructed it).
 inline void add_emission(const Scene& scene, const TransportRules& rules, const RayQueue& rays, const HitQueue& hits,
                          PathState& ps) {
+  if (!rules.add_emission) return;
   for (size_t k = 0; k < rays.size(); ++k) {
     const uint32_t i = rays.path[k];
     const Hit& hit = hits.hit[k];

@@ -130,6 +130,11 @@ TEST_CASE("scenes: the Cornell box with instant global illumination and its para
                 {"integrator=igi", "vpl_sets=2", "light_paths=8", "g_limit=50"});
 }
 
+TEST_CASE("scenes: the Cornell box with light tracing", "[scenes][lt]") {
+  ScenesDir dir("cornell_lt");
+  check_renders(dir, fs::path(TORTE_SOURCE_DIR) / "scenes" / "cornell-box.lua", {"integrator=lt", "max_depth=3"});
+}
+
 TEST_CASE("scenes: shapes.lua and lights.lua with direct lighting", "[scenes]") {
   ScenesDir dir("direct");
   const fs::path scenes = fs::path(TORTE_SOURCE_DIR) / "scenes";
