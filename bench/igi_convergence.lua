@@ -1,5 +1,5 @@
 -- Issue 23's acceptance on IGI: with its default settings igi converges on the Cornell box. Renders the box
--- (geometry and camera of scenes/cornell-box.lua) with `path` at ref_spp as the reference and with `igi` at 8, 64
+-- (scenes/lib/cornell-box.lua, as scenes/cornell-box.lua) with `path` at ref_spp as the reference and with `igi` at 8, 64
 -- and 256 spp, then igi at 256 spp with a loose clamp (g_limit = loose_g_limit), and prints:
 --   * the error of igi at 8 and 64 spp against the reference and its ratio (acceptance: <= 0.6). The metric is
 --     the median over pixels of |igi - ref| in luminance, relative to the reference's mean luminance: the median
@@ -15,38 +15,8 @@ local torte = require "torte"
 
 local opt = torte.options{size = 128, ref_spp = 4096, tile = 32, loose_g_limit = 1e4, seed = 0}
 
-local white = torte.material.matte{color = {0.73, 0.73, 0.73}}
-local red = torte.material.matte{color = {0.63, 0.065, 0.05}}
-local green = torte.material.matte{color = {0.14, 0.45, 0.091}}
-local black = torte.material.matte{color = 0}
-
-local scene = torte.scene()
-local function quad(material, v0, v1, v2, v3, extra)
-  local shape = {positions = {v0, v1, v2, v3}, indices = {0, 1, 2, 0, 2, 3}, material = material}
-  for k, v in pairs(extra or {}) do shape[k] = v end
-  scene:add(torte.shape.mesh(shape))
-end
-quad(white, {552.8, 0, 0}, {0, 0, 0}, {0, 0, 559.2}, {549.6, 0, 559.2})                  -- floor
-quad(white, {556, 548.8, 0}, {556, 548.8, 559.2}, {0, 548.8, 559.2}, {0, 548.8, 0})      -- ceiling
-quad(white, {549.6, 0, 559.2}, {0, 0, 559.2}, {0, 548.8, 559.2}, {556, 548.8, 559.2})    -- back wall
-quad(green, {0, 0, 559.2}, {0, 0, 0}, {0, 548.8, 0}, {0, 548.8, 559.2})                  -- right wall
-quad(red, {552.8, 0, 0}, {549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0})        -- left wall
-quad(white, {130, 165, 65}, {82, 165, 225}, {240, 165, 272}, {290, 165, 114})            -- short block
-quad(white, {290, 0, 114}, {290, 165, 114}, {240, 165, 272}, {240, 0, 272})
-quad(white, {130, 0, 65}, {130, 165, 65}, {290, 165, 114}, {290, 0, 114})
-quad(white, {82, 0, 225}, {82, 165, 225}, {130, 165, 65}, {130, 0, 65})
-quad(white, {240, 0, 272}, {240, 165, 272}, {82, 165, 225}, {82, 0, 225})
-quad(white, {423, 330, 247}, {265, 330, 296}, {314, 330, 456}, {472, 330, 406})          -- tall block
-quad(white, {423, 0, 247}, {423, 330, 247}, {472, 330, 406}, {472, 0, 406})
-quad(white, {472, 0, 406}, {472, 330, 406}, {314, 330, 456}, {314, 0, 456})
-quad(white, {314, 0, 456}, {314, 330, 456}, {265, 330, 296}, {265, 0, 296})
-quad(white, {265, 0, 296}, {265, 330, 296}, {423, 330, 247}, {423, 0, 247})
-quad(black, {343, 548.7, 227}, {343, 548.7, 332}, {213, 548.7, 332}, {213, 548.7, 227}, {emission = {17, 12, 4}})
-
-local camera = torte.camera.perspective{
-  eye = {278, 273, -800}, look_at = {278, 273, 0}, up = {0, 1, 0},
-  fov = 2 * math.deg(math.atan(12.5 / 35)), fov_axis = "vertical",
-}
+local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
+local scene, camera = dofile(script_dir .. "/../scenes/lib/cornell-box.lua")(torte)
 
 local n = opt.size
 assert(n % opt.tile == 0 and n % 8 == 0, "size must be a multiple of tile and of 8")

@@ -49,7 +49,7 @@ constexpr Vec3f cross(Vec3f a, Vec3f b) {
 constexpr Vec3f mul(Vec3f a, Vec3f b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
 constexpr float length_squared(Vec3f v) { return dot(v, v); }
 inline float length(Vec3f v) { return std::sqrt(dot(v, v)); }
-inline Vec3f normalize(Vec3f v) { return v * (1 / length(v)); }  // one division, not three
+inline Vec3f normalize(Vec3f v) { return v / length(v); }
 inline float distance(Vec3f a, Vec3f b) { return length(a - b); }
 inline Vec3f min(Vec3f a, Vec3f b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
 inline Vec3f max(Vec3f a, Vec3f b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }

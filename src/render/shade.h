@@ -74,6 +74,13 @@ struct ShadeScratch {
   std::vector<LightCandidate> lights;
   std::vector<Rgb> f;
   std::vector<float> pdf;
+  /// Ready for a queue of n hits: frames and local directions sized, BSDFs and light candidates emptied.
+  void begin(size_t n) {
+    bsdf.clear();
+    frame.resize(n);
+    wo_local.resize(n);
+    lights.clear();
+  }
 };
 
 // True when geometry and shading normals agree on whether wo -> wi is a reflection or a transmission. When they
@@ -173,10 +180,7 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
   const Scene& scene = ctx.scene;
   PathState& ps = ctx.paths;
   const size_t n = queue.size();
-  sc.bsdf.clear();
-  sc.frame.resize(n);
-  sc.wo_local.resize(n);
-  sc.lights.clear();
+  sc.begin(n);
 
   // Phase 1: BSDFs and light samples.
   for (size_t k = 0; k < n; ++k) {

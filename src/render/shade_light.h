@@ -25,10 +25,7 @@ void shade_light_queue(const ShadeContext& ctx, const Camera& camera, std::span<
   const Scene& scene = ctx.scene;
   PathState& ps = ctx.paths;
   const size_t n = queue.size();
-  sc.bsdf.clear();
-  sc.frame.resize(n);
-  sc.wo_local.resize(n);
-  sc.lights.clear();
+  sc.begin(n);
   raster.clear();
 
   // Phase 1: BSDFs and camera samples (a LightCandidate each: radiance holds We / pdf, distance the lens's).
