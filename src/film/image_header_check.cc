@@ -49,20 +49,26 @@ int64_t fixed_value_size(const std::string& type) {
   return -1;
 }
 
-// A channel list as OpenEXR reads it (entries of name\0, int32 pixel type (0 uint, 1 half, 2 float) and 12 more
-// bytes, up to an empty name): true when its final \0 is the value's last byte. Adds each channel's bytes to
-// `*pixel_bytes` when given.
-bool channel_list_bytes(const std::vector<unsigned char>& value, uint64_t* pixel_bytes) {
+// A channel list as OpenEXR reads it (entries of name\0, int32 pixel type (0 uint, 1 half, 2 float), pLinear and 3
+// reserved bytes, int32 x and y sampling, up to an empty name): "" when its final \0 is the value's last byte and
+// every entry is valid, else what is wrong. Adds each channel's bytes to `*pixel_bytes` when given. OpenImageIO
+// 2.4 aborts the process on a pixel type it does not know (a fuzzed EXR's channel of type 240766).
+std::string channel_list_problem(const std::vector<unsigned char>& value, uint64_t* pixel_bytes) {
   size_t i = 0;
   while (i < value.size() && value[i] != 0) {
     const void* end = std::memchr(&value[i], 0, value.size() - i);
-    if (!end) return false;
-    const size_t type_at = size_t(static_cast<const unsigned char*>(end) - value.data()) + 1;
-    if (type_at + 16 > value.size()) return false;
-    if (pixel_bytes) *pixel_bytes += le32(&value[type_at]) == 1 ? 2 : 4;
+    const size_t type_at = end ? size_t(static_cast<const unsigned char*>(end) - value.data()) + 1 : value.size();
+    if (type_at + 16 > value.size()) break;
+    const std::string channel = printable(std::string(reinterpret_cast<const char*>(&value[i]), type_at - 1 - i));
+    const int32_t type = le32(&value[type_at]);
+    if (type < 0 || type > 2)
+      return "channel '" + channel + "' has pixel type " + std::to_string(type) + " (0 uint, 1 half, 2 float)";
+    if (le32(&value[type_at + 8]) < 1 || le32(&value[type_at + 12]) < 1)
+      return "channel '" + channel + "' has a sampling rate below 1";
+    if (pixel_bytes) *pixel_bytes += type == 1 ? 2 : 4;
     i = type_at + 16;
   }
-  return i + 1 == value.size();
+  return i + 1 == value.size() ? "" : "the channel list does not end where its size says";
 }
 
 // What one part's header says about its decoding buffers.
@@ -157,8 +163,9 @@ ImageHeaderCheck check_exr_header(std::ifstream& in, int64_t size, const unsigne
         if (value_size < 8 || pixels > uint64_t(value_size) / 4 || pixels * 4 != uint64_t(value_size) - 8)
           return {corrupt + "the preview image '" + printable(name) + "' does not have the size its width and height say"};
       } else if (type == "chlist") {
-        if (!channel_list_bytes(value, name == "channels" ? &part.pixel_bytes : nullptr))
-          return {corrupt + "the channel list '" + printable(name) + "' does not end where its size says"};
+        if (const std::string problem = channel_list_problem(value, name == "channels" ? &part.pixel_bytes : nullptr);
+            !problem.empty())
+          return {corrupt + "attribute '" + printable(name) + "': " + problem};
       } else if (name == "dataWindow") {
         part.width = int64_t(le32(&value[8])) - int64_t(le32(&value[0])) + 1;
       } else if (name == "compression") {

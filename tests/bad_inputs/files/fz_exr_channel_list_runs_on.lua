@@ -1,4 +1,4 @@
--- expect: cannot read image texture 'runs-on.exr': corrupt OpenEXR header: the channel list 'channels' does not end where its size says
+-- expect: cannot read image texture 'runs-on.exr': corrupt OpenEXR header: attribute 'channels': the channel list does not end where its size says
 -- OpenEXR reads a channel list up to its empty name, not by the attribute's size: here the last entry runs past
 -- the 33 declared bytes, OpenEXR then reads the later attributes at other offsets than the size says and finds a
 -- 13.6 M-pixel ZIP data window, for which it allocated 1.3 GB line buffers three times; found by fuzz/fuzz_image.cc.
