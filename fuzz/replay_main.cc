@@ -50,7 +50,10 @@ int g_stderr = 2;
 
 }  // namespace
 
-// Sanitizer runtimes define operator new themselves.
+// Sanitizer runtimes define operator new themselves (GCC 12 has no __has_feature, only the __SANITIZE_ macros).
+#ifndef __has_feature
+#define __has_feature(x) 0
+#endif
 #if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__) && !__has_feature(address_sanitizer) && \
     !__has_feature(thread_sanitizer)
 void* operator new(size_t n) {
