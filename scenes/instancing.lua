@@ -4,7 +4,7 @@
 -- is a group built with scene:frame / torte.group and placed with torte.instance.
 --
 --   torte scenes/instancing.lua [levels=4] [width=800] [height=500] [spp=32] [max_depth=6]
---                               [integrator=path|direct] [data=<meshes directory>] [output=out/instancing.exr]
+--                               [integrator=path|direct|lt] [data=<meshes directory>] [output=out/instancing.exr]
 local torte = require "torte"
 
 local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")

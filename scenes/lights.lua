@@ -15,7 +15,7 @@
 --   all          every light at once
 -- `aperture` > 0 renders through a thin lens focused on the sphere (focus_distance = the distance to look_at).
 --
---   torte scenes/lights.lua [width=400] [height=300] [spp=32] [max_depth=8] [integrator=path|direct]
+--   torte scenes/lights.lua [width=400] [height=300] [spp=32] [max_depth=8] [integrator=path|direct|lt]
 --                           [camera=perspective|orthographic] [output=out/lights.exr]
 --                           [light=mixed|spot|directional|environment|sky|all] [aperture=0]
 --                           [sun_elevation=35] [sun_azimuth=-40] [turbidity=3]

@@ -4,7 +4,7 @@
 --
 --   torte scenes/lucy-scale.lua [levels=4] [displacement=0.05] [companions=true] [mesh=<hero .ply/.obj>]
 --                               [data=<meshes directory>] [width=800] [height=600] [spp=16] [max_depth=5]
---                               [integrator=path|direct] [output=out/lucy-scale.exr]
+--                               [integrator=path|direct|lt] [output=out/lucy-scale.exr]
 --
 -- Triangles: the hero is subdivided `levels` times (x4 each), the companions max(levels - 2, 0) times.
 --   levels=4 (default): Lucy 99,970 x 256 = 25,592,320 + dragon 100,000 x 16 = 1,600,000

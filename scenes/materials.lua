@@ -2,7 +2,7 @@
 -- glass and mirror, on a matte floor in front of a backdrop, lit by two area lights and a dim sky.
 --
 --   torte scenes/materials.lua [width=960] [height=360] [spp=64] [max_depth=12]
---                              [integrator=path|direct] [metal=gold] [roughness=0.15]
+--                              [integrator=path|direct|lt] [metal=gold] [roughness=0.15]
 --                              [mesh=<.ply/.obj>] [data=<meshes directory>] [output=out/materials.exr]
 --
 -- The model comes from ../shared/data/meshes/happy-buddha (relative to the repository root); `data` overrides

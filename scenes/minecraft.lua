@@ -6,7 +6,7 @@
 --                              [box=x0,y0,z0,x1,y1,z1] [camera=ex,ey,ez,lx,ly,lz] [fov=40]
 --                              [sun_elevation=35] [sun_azimuth=-50] [emission=true] [skip_bad_chunks=false] [sea=true]
 --                              [sea_radius=2e7]
---                              [width=960] [height=540] [spp=16] [max_depth=6] [integrator=path|direct]
+--                              [width=960] [height=540] [spp=16] [max_depth=6] [integrator=path|direct|lt]
 --                              [output=out/minecraft.exr]
 --
 -- world: default ../shared/data/minecraft/bluenbt-1.20.1-paper (relative to this script); a bare name such as

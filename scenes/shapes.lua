@@ -3,7 +3,7 @@
 -- here in Lua). Lit by a point light and a glowing sphere (an area light); matte materials throughout.
 --
 --   torte scenes/shapes.lua [width=400] [height=300] [spp=64] [max_depth=8]
---                           [integrator=path|direct] [output=out/shapes.exr]
+--                           [integrator=path|direct|lt] [output=out/shapes.exr]
 local torte = require "torte"
 
 local opt = torte.options{

@@ -2,7 +2,7 @@
 -- wood-like rings, a bump-mapped sphere, a mix of two materials by a noise mask, and Keenan Crane's Spot cow
 -- with its image texture (../shared/data/meshes/spot; skipped with a message when absent).
 --
---   torte scenes/textures.lua [width=800] [height=450] [spp=64] [max_depth=8] [integrator=path|direct]
+--   torte scenes/textures.lua [width=800] [height=450] [spp=64] [max_depth=8] [integrator=path|direct|lt]
 --                             [data=<meshes directory>] [output=out/textures.exr]
 local torte = require "torte"
 
