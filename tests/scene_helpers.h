@@ -47,6 +47,26 @@ inline CameraDesc furnace_camera() {
   return c;
 }
 
+// The mean of channel(pixel) over the pixels of a furnace_camera image that lie well inside a unit sphere's
+// silhouette (x^2 + y^2 < 0.8 on the 2.5-unit view), away from its antialiased rim.
+template <class Channel>
+double furnace_sphere_mean(const Image& img, Channel&& channel) {
+  double sum = 0;
+  int n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const float px = (x + 0.5f) / img.width * 2.5f - 1.25f, py = (y + 0.5f) / img.height * 2.5f - 1.25f;
+      if (px * px + py * py < 0.8f) {
+        sum += channel(img.at(x, y));
+        ++n;
+      }
+    }
+  return sum / n;
+}
+inline double furnace_sphere_mean_green(const Image& img) {
+  return furnace_sphere_mean(img, [](const Rgb& c) { return double(c.g); });
+}
+
 // render() as `camera` sees the scene: the Camera is made for the settings' image size.
 inline RenderOutput render_view(const Scene& scene, const CameraDesc& camera, const RenderSettings& s,
                                 const std::atomic<bool>* cancel = nullptr) {

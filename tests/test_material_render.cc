@@ -48,17 +48,7 @@ double furnace(std::shared_ptr<const MaterialDesc> m, int spp = 64, int max_dept
   rs.max_depth = max_depth;
   rs.integrator = integrator;
   const Image img = render_view(*b.flatten(), furnace_camera(), rs).image;
-  double sum = 0;
-  int n = 0;
-  for (int y = 0; y < rs.height; ++y)
-    for (int x = 0; x < rs.width; ++x) {
-      const float px = (x + 0.5f) / rs.width * 2.5f - 1.25f, py = (y + 0.5f) / rs.height * 2.5f - 1.25f;
-      if (px * px + py * py < 0.8f) {
-        sum += img.at(x, y).average();
-        ++n;
-      }
-    }
-  return sum / n;
+  return furnace_sphere_mean(img, [](const Rgb& c) { return double(c.average()); });
 }
 
 }  // namespace

@@ -20,16 +20,14 @@ Vec3f spherical_direction(float sin_theta, float cos_theta, float u) {
   return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
 }
 
-}  // namespace
-
-namespace {
-// sin and cos of |phi| <= pi/4 from their Taylor series (truncation error below 2e-9, under one float ulp of the
-// results): the concentric map only needs this range, and a libm call per BSDF sample was 3 % of a Cornell render.
 // mask ? a : b for a mask of all ones or all zeros, in bit operations: clang turns a plain select of floats into a
 // branch for SSE2, which mispredicts half the time on random samples.
 inline float select_bits(uint32_t mask, float a, float b) {
   return std::bit_cast<float>((std::bit_cast<uint32_t>(a) & mask) | (std::bit_cast<uint32_t>(b) & ~mask));
 }
+
+// sin and cos of |phi| <= pi/4 from their Taylor series (truncation error below 2e-9, under one float ulp of the
+// results): the concentric map only needs this range, and a libm call per BSDF sample was 3 % of a Cornell render.
 inline void sincos_quarter_turn(float phi, float* s, float* c) {
   const float p2 = phi * phi;
   *s = phi * (1 + p2 * (-1.0f / 6 + p2 * (1.0f / 120 + p2 * (-1.0f / 5040 + p2 * (1.0f / 362880)))));

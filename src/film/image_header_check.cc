@@ -27,9 +27,10 @@ uint64_t lines_per_block(int compression) {
   return compression >= 0 && compression < 10 ? kLines[compression] : 256;
 }
 
-// The largest factor by which decode_bytes() can exceed the compressed bytes, by compression: the decoded block
-// (raw and widened, x4 in decode_bytes) over its stored size: none 1, RLE 64 (a 2-byte run of 128), zlib-based
-// (ZIPS, ZIP, PXR24) 1032, PIZ 4096 (Huffman runs), B44 2.3 and B44A 11 (4x4 blocks of 32 bytes in 14 or 3).
+// The largest factor by which decode_bytes() can exceed a block's stored bytes: the compression's largest ratio of
+// decoded to stored size, times 4 (decode_bytes counts the stored and the decoded buffer, and a margin of 2). The
+// ratios: none 1, RLE 64 (a 2-byte run of 128), zlib-based (ZIPS, ZIP, PXR24) 1032, PIZ 4096 (Huffman runs), B44
+// 2.3 and B44A 11 (4x4 blocks of 32 bytes in 14 or 3).
 // DWAA, DWAB and unknown values (whose ratio has no simple bound) are left to the memory budget alone.
 uint64_t max_expansion(int compression) {
   static constexpr uint64_t kExpansion[] = {1, 64, 1032, 1032, 4096, 1032, 3, 11};

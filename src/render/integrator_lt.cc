@@ -1,6 +1,5 @@
 #include "render/integrator_lt.h"
 
-#include "core/error.h"
 #include "render/shade_light.h"
 #include "render/stage_hits.h"
 #include "render/stage_light.h"
@@ -90,7 +89,6 @@ class LtDriver {
 
 RenderOutput render_lt(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                        ProgressSink* progress, const std::atomic<bool>* cancel) {
-  if (const std::string why = camera.connect_problem(); !why.empty()) throw Error("integrator 'lt': " + why);
   LtDriver driver(scene, camera, settings);
   return run_tiles(scene, settings, driver, progress, cancel);
 }

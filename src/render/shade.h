@@ -159,6 +159,27 @@ void eval_candidates(ShadeScratch<Bsdf>& sc) {
   }
 }
 
+// Phase 4 of a shading kernel: samples each slot's BSDF (built in sc by phase 1) for its path's next ray and
+// continues the path (continue_path, in transport `mode`); a path whose sample fails ends.
+template <MaterialType T, class Bsdf>
+void sample_next_rays(const ShadeContext& ctx, std::span<const uint32_t> queue, const ShadeScratch<Bsdf>& sc,
+                      TransportMode mode) {
+  const PathState& ps = ctx.paths;
+  for (size_t k = 0; k < queue.size(); ++k) {
+    const uint32_t slot = queue[k], i = ctx.rays.path[slot];
+    const uint16_t depth = ps.depth[i];
+    const uint32_t px = ps.pixel[i], si = ps.sample[i];
+    BsdfSample bs;
+    // Single-lobe models ignore the lobe sample: do not pay for a sampler dimension they do not read.
+    const float uc =
+        MaterialTraits<T>::kSingleLobe ? 0.5f : ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe));
+    if (!sc.bsdf[k].sample(sc.wo_local[k], uc, ctx.sampler.get_2d(px, si, bounce_dim(depth, kDimBsdf)), &bs) ||
+        !(bs.pdf > 0))
+      continue;  // the path ends
+    continue_path(ctx, slot, sc.frame[k], sc.wo_local[k], bs, mode);
+  }
+}
+
 inline void add_candidate(const ShadeContext& ctx, std::vector<LightCandidate>& out, uint32_t slot,
                           const SurfaceHit& s, const Frame& frame, Vec3f wo, Vec3f wo_local, const Light& light,
                           float pmf, Vec2f u) {
@@ -228,18 +249,7 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
   on_shaded(std::as_const(sc), queue);
 
   // Phase 4: BSDF sampling for the paths' next rays.
-  for (size_t k = 0; k < n; ++k) {
-    const uint32_t slot = queue[k], i = ctx.rays.path[slot];
-    const uint16_t depth = ps.depth[i];
-    const uint32_t px = ps.pixel[i], si = ps.sample[i];
-    BsdfSample bs;
-    // Single-lobe models ignore the lobe sample: do not pay for a sampler dimension they do not read.
-    const float uc = Traits::kSingleLobe ? 0.5f : ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe));
-    if (!sc.bsdf[k].sample(sc.wo_local[k], uc, ctx.sampler.get_2d(px, si, bounce_dim(depth, kDimBsdf)), &bs) ||
-        !(bs.pdf > 0))
-      continue;  // the path ends
-    continue_path(ctx, slot, sc.frame[k], sc.wo_local[k], bs);
-  }
+  detail::sample_next_rays<T>(ctx, queue, sc, TransportMode::Radiance);
 }
 
 }  // namespace torte

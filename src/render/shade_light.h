@@ -66,18 +66,8 @@ void shade_light_queue(const ShadeContext& ctx, const Camera& camera, std::span<
     connections.push(o, c.wi, length(s.p + c.wi * c.distance - o) * (1 - 1e-4f), value, i, raster[k]);
   }
 
-  // Phase 4: BSDF sampling for the paths' next rays.
-  for (size_t k = 0; k < n; ++k) {
-    const uint32_t slot = queue[k], i = ctx.rays.path[slot];
-    const uint16_t depth = ps.depth[i];
-    const uint32_t px = ps.pixel[i], si = ps.sample[i];
-    BsdfSample bs;
-    const float uc = Traits::kSingleLobe ? 0.5f : ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe));
-    if (!sc.bsdf[k].sample(sc.wo_local[k], uc, ctx.sampler.get_2d(px, si, bounce_dim(depth, kDimBsdf)), &bs) ||
-        !(bs.pdf > 0))
-      continue;
-    continue_path(ctx, slot, sc.frame[k], sc.wo_local[k], bs, TransportMode::Importance);
-  }
+  // Phase 4: BSDF sampling for the paths' next rays, with the adjoint shading-normal factor.
+  detail::sample_next_rays<T>(ctx, queue, sc, TransportMode::Importance);
 }
 
 }  // namespace torte
