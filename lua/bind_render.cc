@@ -12,6 +12,7 @@
 #include "file_access.h"
 #include "film/image_io.h"
 #include "progress.h"
+#include "render_metadata.h"
 #include "render/render_settings.h"
 #include "script_limits.h"
 #include "types.h"
@@ -308,6 +309,7 @@ int l_render(lua_State* L) {
   }
   progress.finish();
   img->image = std::move(out.image);
+  img->image.attributes = render_attributes(s, integrator, *camera, out.stats);
   img->stats = out.stats;
   img->build_seconds = build_seconds;
   img->scene_reused = built.reused;
@@ -336,7 +338,8 @@ std::shared_ptr<RenderedImage> self_image(lua_State* L, const char* method) {
   return img;
 }
 
-// image:write(path [, {exposure = stops}])
+// image:write(path [, {exposure = stops, tonemap = "standard" | "filmic" | "agx"}]); --exposure and --tonemap
+// on the command line win over the script's values.
 int image_write(lua_State* L) {
   auto img = self_image(L, "write");
   if (lua_type(L, 2) != LUA_TSTRING) throw Error("image:write expects a file name");
@@ -346,8 +349,14 @@ int image_write(lua_State* L) {
   if (!lua_isnoneornil(L, 3)) {
     KwArgs kw(L, 3, "image:write");
     options.exposure = float(kw.number("exposure", 0));
+    const std::string view = kw.string("tonemap", "standard");
+    if (!parse_view_transform(view, options.view))
+      kw.fail("tonemap", std::string("must be ") + kViewTransformChoices + ", got \"" + view + "\"");
     kw.finish();
   }
+  const RunContext& ctx = run_context(L);
+  if (ctx.exposure_override) options.exposure = *ctx.exposure_override;
+  if (ctx.tonemap_override) options.view = *ctx.tonemap_override;
   const auto t0 = std::chrono::steady_clock::now();
   write_image(img->image, path, options);
   run_context(L).write_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -268,6 +268,8 @@ int run_script(const RunOptions& options) {
   ctx.seed_override = options.seed_override;
   ctx.quiet = options.quiet;
   ctx.stats = options.stats;
+  ctx.exposure_override = options.exposure_override;
+  ctx.tonemap_override = options.tonemap_override;
   ctx.cancel = options.cancel;
   std::optional<FilePolicy> policy;
   if (options.sandbox) {

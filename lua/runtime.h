@@ -4,9 +4,12 @@
 #include <lua.h>
 
 #include <atomic>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "film/view_transform.h"
 
 namespace torte::lua {
 
@@ -17,6 +20,9 @@ struct RunOptions {
   int64_t seed_override = -1;
   bool quiet = false;
   bool stats = false;  // --stats: a per-stage profile (render/stage_stats.h) on stderr after every render
+  // --exposure, --tonemap: override what scripts pass to image:write / torte.save for display outputs.
+  std::optional<float> exposure_override;
+  std::optional<ViewTransform> tonemap_override;
   const std::atomic<bool>* cancel = nullptr;  // renders stop when it becomes true (main: torte::interrupt_flag())
   // --sandbox (docs/security.md): the restricted libraries and the file policy of lua/sandbox.h.
   bool sandbox = false;

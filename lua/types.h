@@ -1,8 +1,11 @@
 // The C++ types that Lua scripts hold as userdata, and their metatable names (also used in error messages).
 #pragma once
+#include <optional>
+
 #include "binding.h"
 #include "film/filter.h"
 #include "film/image.h"
+#include "film/view_transform.h"
 #include "render/render.h"
 #include "scene/builder.h"
 #include "scene_cache.h"
@@ -33,6 +36,8 @@ struct RunContext {
   int64_t seed_override = -1;   // --seed
   bool quiet = false;           // --quiet
   bool stats = false;           // --stats: every render collects and prints its per-stage profile
+  std::optional<float> exposure_override;           // --exposure
+  std::optional<ViewTransform> tonemap_override;    // --tonemap
   const std::atomic<bool>* cancel = nullptr;  // set by Ctrl-C
   bool interrupted = false;     // a render was cut short: later renders are refused
   // Totals over the run, for the closing summary.

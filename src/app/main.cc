@@ -37,6 +37,9 @@ const std::string kUsage =
     "  --seed N                override every render's random seed\n"
     "  --quiet                 no progress or summary on stderr\n"
     "  --stats                 after every render, time, calls and rays per render stage on stderr\n"
+    "  --exposure STOPS        display outputs (PNG, JPEG): scale by 2^STOPS (overrides the script's exposure)\n"
+    "  --tonemap VIEW          display outputs: view transform standard, filmic (ACES) or agx (overrides the\n"
+    "                          script's tonemap)\n"
     "  --max-memory SIZE       the memory torte may use, e.g. 8G or 512M (default: 3/4 of the RAM)\n"
     "  --lua-memory SIZE       the memory the script's Lua heap may hold (default: half of --max-memory)\n"
     "  --lua-instructions N    stop the script after N Lua instructions (default: 0, no limit; under\n"
@@ -75,6 +78,16 @@ int64_t parse_integer(const char* option, const char* value, int64_t min, int64_
   return v;
 }
 
+// A finite number of stops in [-64, 64], the whole of `value`.
+float parse_stops(const char* option, const char* value) {
+  double v = 0;
+  const char* end = value + std::strlen(value);
+  const auto [ptr, ec] = std::from_chars(value, end, v);
+  if (ec != std::errc() || ptr != end || end == value || !(v >= -64 && v <= 64))
+    usage_error(std::string(option) + " expects a number of stops in [-64, 64], got '" + value + "'");
+  return float(v);
+}
+
 uint64_t parse_size(const char* option, const char* value, uint64_t min) {
   uint64_t bytes = 0;
   try {
@@ -109,6 +122,14 @@ int main(int argc, char** argv) {
       options.quiet = true;
     } else if (a == "--stats") {
       options.stats = true;
+    } else if (a == "--exposure") {
+      options.exposure_override = parse_stops("--exposure", option_value(argc, argv, i, "--exposure"));
+    } else if (a == "--tonemap") {
+      const char* v = option_value(argc, argv, i, "--tonemap");
+      torte::ViewTransform view;
+      if (!torte::parse_view_transform(v, view))
+        usage_error(std::string("--tonemap expects ") + torte::kViewTransformChoices + ", got '" + v + "'");
+      options.tonemap_override = view;
     } else if (a == "--threads") {
       threads = int(parse_integer("--threads", option_value(argc, argv, i, "--threads"), 1, 4096));
     } else if (a == "--spp") {

@@ -1,14 +1,25 @@
 // A linear RGB float image, row-major, (0,0) at the top left.
 #pragma once
+#include <array>
+#include <string>
+#include <variant>
 #include <vector>
 
 #include "core/rgb.h"
 
 namespace torte {
 
+/// A named value a file records beside the pixels: an EXR header attribute, a PNG text chunk. A matrix is 16
+/// floats in row-major order (EXR's worldToCamera convention: row vectors, p' = p M).
+struct ImageAttribute {
+  std::string name;
+  std::variant<int, float, std::string, std::array<float, 16>> value;
+};
+
 struct Image {
   int width = 0, height = 0;
   std::vector<Rgb> pixels;
+  std::vector<ImageAttribute> attributes;  // written by image files that can hold them (EXR: all; PNG: text)
   Image() = default;
   Image(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h)) {}
   Rgb& at(int x, int y) { return pixels[size_t(y) * width + x]; }

@@ -96,21 +96,30 @@ void write_image(const Image& image, const std::string& path, const WriteOptions
     data = linear_data.data();
     data_type = OIIO::TypeDesc::FLOAT;
   } else {
-    // Display formats: exposure, clamp and the sRGB curve are applied here rather than by OIIO's colour
+    // Display formats: exposure and the view transform are applied here rather than by OIIO's colour
     // management, so the output does not depend on how OIIO/OpenColorIO were configured.
     spec = OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
-    const float scale = std::exp2(options.exposure);
-    display_data.resize(3 * n);
-    for (size_t i = 0; i < n; ++i) {
-      // A pixel with any non-finite channel is a failed estimate; showing it black is the least misleading.
-      const Rgb p = image.pixels[i].is_finite() ? image.pixels[i] * scale : Rgb(0);
-      const float c[3] = {p.r, p.g, p.b};
-      for (int k = 0; k < 3; ++k)
-        display_data[3 * i + k] = static_cast<unsigned char>(std::lround(linear_to_srgb(c[k]) * 255));
-    }
+    std::vector<float> display;
+    apply_view_transform(options.view, options.exposure, image, display);
+    display_data.resize(display.size());
+    for (size_t i = 0; i < display.size(); ++i)
+      display_data[i] = static_cast<unsigned char>(std::lround(display[i] * 255));
     data = display_data.data();
     data_type = OIIO::TypeDesc::UINT8;
+  }
+  for (const ImageAttribute& a : image.attributes) {
+    if (const auto* v = std::get_if<std::string>(&a.value)) {
+      spec.attribute(a.name, *v);
+    } else if (!linear) {
+      continue;  // PNG and JPEG hold text only
+    } else if (const auto* i = std::get_if<int>(&a.value)) {
+      spec.attribute(a.name, *i);
+    } else if (const auto* f = std::get_if<float>(&a.value)) {
+      spec.attribute(a.name, *f);
+    } else if (const auto* m = std::get_if<std::array<float, 16>>(&a.value)) {
+      spec.attribute(a.name, OIIO::TypeMatrix44, m->data());
+    }
   }
 
   if (!out->open(path, spec)) write_error(path, one_line(out->geterror()));

@@ -4,15 +4,18 @@
 #include <string>
 
 #include "film/image.h"
+#include "film/view_transform.h"
 
 namespace torte {
 
 struct WriteOptions {
   float exposure = 0;  // stops; applied (x 2^exposure) before encoding display formats (PNG, JPEG, ...)
+  ViewTransform view = ViewTransform::Standard;  // display formats only
 };
 
-// The extension picks the format: .exr (32-bit float, linear, no tone mapping), .hdr (RGBE, linear),
-// .png/.jpg/.tif/... (exposure, clamp, sRGB encoding, 8 bits; non-finite pixels black). Creates missing parent
+// The extension picks the format: .exr (32-bit float, linear, no tone mapping, every image attribute in the
+// header), .hdr (RGBE, linear), .png/.jpg/.tif/... (exposure and the view transform, 8 bits; non-finite pixels
+// black; text attributes where the format holds them). Creates missing parent
 // directories. Throws torte::Error naming the file on failure.
 void write_image(const Image& image, const std::string& path, const WriteOptions& options = {});
 // Reads any format OIIO knows into linear RGB (sRGB-encoded 8-bit formats are decoded). Throws torte::Error.

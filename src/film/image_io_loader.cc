@@ -70,6 +70,10 @@ std::shared_ptr<const ImageSource> open_image_texture(const std::string& path, c
 
 void invalidate_image_texture(const std::string& path) { module().invalidate_image_texture(path); }
 
+void apply_view_transform(ViewTransform view, float exposure, const Image& image, std::vector<float>& out) {
+  module().apply_view_transform(view, exposure, image, out);
+}
+
 float linear_to_srgb(float v) { return module().linear_to_srgb(v); }
 float srgb_to_linear(float v) { return module().srgb_to_linear(v); }
 

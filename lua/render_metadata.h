@@ -1,0 +1,20 @@
+// What an image file records about the render that made it (EXR header attributes, PNG text chunks), so a
+// file found later says how to reproduce it.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "camera/camera.h"
+#include "film/image.h"
+#include "render/render_settings.h"
+
+namespace torte::lua {
+
+/// The attributes of a finished render: `torte:spp`, `torte:integrator`, `torte:seed` (decimal text: 64 bits),
+/// `torte:max_depth`, `torte:render_seconds`, `torte:camera` (a one-line description), `worldToCamera` (EXR's
+/// standard camera matrix), `Software` (torte and its version) and `torte:simd_target` (the traversal kernels'
+/// Highway target), plus `torte:interrupted` when the render was cut short.
+std::vector<ImageAttribute> render_attributes(const RenderSettings& s, const std::string& integrator,
+                                              const CameraDesc& camera, const RenderStats& stats);
+
+}  // namespace torte::lua
