@@ -212,6 +212,11 @@ void print_summary(const RenderedImage& img, const RenderSettings& s) {
                format_duration(st.render_seconds).c_str(),
                double(st.rays()) * 1e-6, double(st.camera_rays) * 1e-6, double(st.extension_rays) * 1e-6,
                double(st.shadow_rays) * 1e-6, mrays, static_cast<unsigned long long>(st.dropped_samples));
+  if (!img.image.layers.empty()) {
+    std::string names;
+    for (const ImageLayer& l : img.image.layers) names += (names.empty() ? "" : ", ") + l.name;
+    std::fprintf(stderr, "layers %s: %s\n", names.c_str(), format_duration(img.aov_seconds).c_str());
+  }
 }
 
 // Size of what is traced: the scene's own triangles, what instancing places, and the memory it all takes.
@@ -268,7 +273,10 @@ int l_render(lua_State* L) {
   if (auto f = kw.object<Filter>("filter", true)) s.filter = *f;
   // The per-stage profile (image.stages); --stats collects it for every render and prints it.
   s.stage_stats = kw.boolean("stats", false) || ctx.stats;
+  AovRequest aov_request = read_aov_request(kw, s.spp);
   kw.finish();
+  aov_request.aovs.insert(aov_request.aovs.end(), ctx.aovs.begin(), ctx.aovs.end());
+  aov_request.denoise = aov_request.denoise || ctx.denoise;
   // The rules are render()'s (render/render_settings.h); checked here to name the keyword before the build.
   if (const auto problem = find_settings_problem(s)) kw.fail(problem->key, problem->problem);
   if (s.integrator == IntegratorKind::Lt)  // light paths connect to the camera: it must allow that
@@ -310,6 +318,11 @@ int l_render(lua_State* L) {
   progress.finish();
   img->image = std::move(out.image);
   img->image.attributes = render_attributes(s, integrator, *camera, out.stats);
+  if (!out.stats.interrupted && !interrupt_requested()) {  // Ctrl-C: keep what the render made, nothing more
+    const auto t_aov = std::chrono::steady_clock::now();
+    add_aovs(*img, flat, Camera(*camera, s.width, s.height), s, aov_request, ctx.cancel);
+    img->aov_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_aov).count();
+  }
   img->stats = out.stats;
   img->build_seconds = build_seconds;
   img->scene_reused = built.reused;
@@ -444,6 +457,7 @@ int image_index(lua_State* L) {
     lua_pushboolean(L, img->stats.interrupted);
   } else if (key == "stages") {
     push_stages(L, img->stats.stages);
+  } else if (push_image_field(L, *img, key)) {
   } else {
     static const luaL_Reg methods[] = {{"write", guarded<image_write>}, {"pixel", guarded<image_pixel>},
                                        {"mean", guarded<image_mean>}, {nullptr, nullptr}};

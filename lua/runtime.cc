@@ -188,6 +188,7 @@ void open_torte_module(lua_State* L, const RunOptions& options) {
   open_lights(L, torte_index);
   open_cameras(L, torte_index);
   open_render(L, torte_index);
+  open_images(L, torte_index);
   open_meshes(L, torte_index);
   open_textures(L, torte_index);
   open_voxels(L, torte_index);
@@ -270,6 +271,8 @@ int run_script(const RunOptions& options) {
   ctx.stats = options.stats;
   ctx.exposure_override = options.exposure_override;
   ctx.tonemap_override = options.tonemap_override;
+  ctx.aovs = options.aovs;
+  ctx.denoise = options.denoise;
   ctx.cancel = options.cancel;
   std::optional<FilePolicy> policy;
   if (options.sandbox) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "film/view_transform.h"
+#include "render/aov_pass.h"
 
 namespace torte::lua {
 
@@ -23,6 +24,8 @@ struct RunOptions {
   // --exposure, --tonemap: override what scripts pass to image:write / torte.save for display outputs.
   std::optional<float> exposure_override;
   std::optional<ViewTransform> tonemap_override;
+  std::vector<Aov> aovs;  // --aovs: AOV layers added to every render
+  bool denoise = false;   // --denoise: every render is denoised (its noisy image kept as a layer)
   const std::atomic<bool>* cancel = nullptr;  // renders stop when it becomes true (main: torte::interrupt_flag())
   // --sandbox (docs/security.md): the restricted libraries and the file policy of lua/sandbox.h.
   bool sandbox = false;

@@ -1,11 +1,15 @@
 // The C++ types that Lua scripts hold as userdata, and their metatable names (also used in error messages).
 #pragma once
+#include <atomic>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "binding.h"
 #include "film/filter.h"
 #include "film/image.h"
 #include "film/view_transform.h"
+#include "render/aov_pass.h"
 #include "render/render.h"
 #include "scene/builder.h"
 #include "scene_cache.h"
@@ -18,6 +22,7 @@ struct RenderedImage {
   RenderStats stats;
   double build_seconds = 0;   // flattening the scene and building its BVHs for this render
   bool scene_reused = false;  // the scene of an earlier render was unchanged and served again (SceneCache)
+  double aov_seconds = 0;     // the AOV pass and the denoiser, after the render
 };
 
 template <> struct LuaName<MaterialDesc> { static constexpr const char* value = "torte.material"; };
@@ -30,6 +35,22 @@ template <> struct LuaName<Filter> { static constexpr const char* value = "torte
 template <> struct LuaName<RenderedImage> { static constexpr const char* value = "torte.image"; };
 template <> struct LuaName<TriangleMesh> { static constexpr const char* value = "torte.mesh"; };
 
+// What torte.render{} asked for besides light (lua/bind_image.cc).
+struct AovRequest {
+  std::vector<Aov> aovs;  // aovs = {...} (and --aovs)
+  int samples = 16;       // aov_samples: camera samples per pixel of the AOV pass
+  bool denoise = false;   // denoise = true (and --denoise): also albedo, normal, depth, then film/denoise.h
+};
+/// Reads aovs, aov_samples and denoise from torte.render{}'s table (spp: the render's, for the default).
+AovRequest read_aov_request(KwArgs& kw, int spp);
+/// The AOV names of `names` (errors start with `where`), each once.
+std::vector<Aov> parse_aov_names(const std::vector<std::string>& names, const std::string& where);
+/// Renders the layers `request` asks for into img.image (and denoises it when asked).
+void add_aovs(RenderedImage& img, const Scene& scene, const Camera& camera, const RenderSettings& s,
+              AovRequest request, const std::atomic<bool>* cancel);
+/// Pushes image field `key` handled by lua/bind_image.cc (layers, layer); false when it is not one of those.
+bool push_image_field(lua_State* L, const RenderedImage& img, const std::string& key);
+
 // Settings of the whole run that bindings consult (from the command line).
 struct RunContext {
   int spp_override = -1;        // --spp
@@ -38,6 +59,8 @@ struct RunContext {
   bool stats = false;           // --stats: every render collects and prints its per-stage profile
   std::optional<float> exposure_override;           // --exposure
   std::optional<ViewTransform> tonemap_override;    // --tonemap
+  std::vector<Aov> aovs;                            // --aovs: added to every render's
+  bool denoise = false;                             // --denoise: every render is denoised
   const std::atomic<bool>* cancel = nullptr;  // set by Ctrl-C
   bool interrupted = false;     // a render was cut short: later renders are refused
   // Totals over the run, for the closing summary.
@@ -53,6 +76,7 @@ void open_materials(lua_State* L, int torte_index);  // torte.material.*
 void open_lights(lua_State* L, int torte_index);     // torte.light.*
 void open_cameras(lua_State* L, int torte_index);    // torte.camera.*
 void open_render(lua_State* L, int torte_index);     // torte.scene, torte.render, torte.filter.*, images
+void open_images(lua_State* L, int torte_index);     // torte.denoise (lua/bind_image.cc)
 void open_meshes(lua_State* L, int torte_index);     // torte.mesh.*, torte.clock
 void open_textures(lua_State* L, int torte_index);   // torte.texture.* (lua/bind_texture.cc)
 void open_voxels(lua_State* L, int torte_index);     // torte.voxel.*, torte.shape.voxels (lua/bind_voxel.cc)

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <string>
@@ -32,6 +33,9 @@ const std::string kUsage =
     "values that look like numbers or true/false are converted.\n"
     "\n"
     "options:\n"
+    "  --aovs LIST             add AOV layers to every render's image, e.g. albedo,normal,depth (also position,\n"
+    "                          material_id); EXR outputs hold them as layers\n"
+    "  --denoise               denoise every render (feature-guided; the noisy image is kept as layer 'noisy')\n"
     "  --threads N             render with N threads (default: all cores)\n"
     "  --spp N                 override every render's samples per pixel\n"
     "  --seed N                override every render's random seed\n"
@@ -130,6 +134,19 @@ int main(int argc, char** argv) {
       if (!torte::parse_view_transform(v, view))
         usage_error(std::string("--tonemap expects ") + torte::kViewTransformChoices + ", got '" + v + "'");
       options.tonemap_override = view;
+    } else if (a == "--aovs") {
+      const std::string list = option_value(argc, argv, i, "--aovs");
+      for (size_t start = 0; start <= list.size();) {
+        const size_t comma = std::min(list.find(',', start), list.size());
+        const std::string name = list.substr(start, comma - start);
+        torte::Aov aov;
+        if (!torte::parse_aov(name, aov))
+          usage_error("--aovs: unknown AOV '" + name + "' (known: " + torte::kAovChoices + ")");
+        options.aovs.push_back(aov);
+        start = comma + 1;
+      }
+    } else if (a == "--denoise") {
+      options.denoise = true;
     } else if (a == "--threads") {
       threads = int(parse_integer("--threads", option_value(argc, argv, i, "--threads"), 1, 4096));
     } else if (a == "--spp") {

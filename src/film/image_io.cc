@@ -80,18 +80,37 @@ void write_image(const Image& image, const std::string& path, const WriteOptions
   const void* data = nullptr;
   OIIO::TypeDesc data_type;
   if (linear) {
-    spec = OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT);
+    // EXR keeps the layers as further channels named <layer>.<channel>, as multi-layer EXR readers expect.
+    const bool exr = ext == ".exr";
+    std::vector<std::string> names{"R", "G", "B"};
+    std::vector<const ImageLayer*> layers;
+    if (exr)
+      for (const ImageLayer& l : image.layers) {
+        if (l.channels.empty() || l.values.size() != n * l.channels.size())
+          write_error(path, "layer '" + l.name + "' does not hold " + std::to_string(l.channels.size()) +
+                                " values for each of the " + std::to_string(n) + " pixels");
+        layers.push_back(&l);
+        for (const std::string& c : l.channels) names.push_back(l.name + "." + c);
+      }
+    const size_t nc = names.size();
+    spec = OIIO::ImageSpec(w, h, int(nc), OIIO::TypeDesc::FLOAT);
+    spec.channelnames = names;
     spec.attribute("oiio:ColorSpace", "Linear");
-    if (ext == ".exr") spec.attribute("compression", "zip");
-    linear_data.resize(3 * n);
+    if (exr) spec.attribute("compression", "zip");
+    linear_data.resize(nc * n);
     // RGBE has no sign and no NaN/inf: such values would come back as garbage, so they are written as 0 there.
     // EXR stores every float as it is.
     const bool rgbe = ext == ".hdr";
     for (size_t i = 0; i < n; ++i) {
       const Rgb& p = image.pixels[i];
       const float c[3] = {p.r, p.g, p.b};
-      for (int k = 0; k < 3; ++k)
-        linear_data[3 * i + k] = rgbe && !(c[k] > 0 && std::isfinite(c[k])) ? 0.0f : c[k];
+      float* out_px = &linear_data[nc * i];
+      for (int k = 0; k < 3; ++k) out_px[k] = rgbe && !(c[k] > 0 && std::isfinite(c[k])) ? 0.0f : c[k];
+      size_t k = 3;
+      for (const ImageLayer* l : layers) {
+        const float* v = l->at(i);
+        for (size_t j = 0; j < l->channels.size(); ++j) out_px[k++] = v[j];
+      }
     }
     data = linear_data.data();
     data_type = OIIO::TypeDesc::FLOAT;
@@ -171,12 +190,34 @@ Image read_image(const std::string& path) {
   const bool srgb = OIIO::Strutil::iequals(space, "sRGB") ||
                     (spec.format == OIIO::TypeDesc::UINT8 && (space.empty() || format == "png" || format == "jpeg"));
   const auto decode = [srgb](float v) { return srgb ? srgb_to_linear(v) : v; };
-  // Grey (and grey + alpha) images are replicated to RGB; channels past the third (alpha, ...) are dropped.
+  // Grey (and grey + alpha) images are replicated to RGB; other channels past the third (alpha, ...) are dropped.
   const int cg = nc >= 3 ? 1 : 0, cb = nc >= 3 ? 2 : 0;
   Image image(w, h);
   for (size_t i = 0; i < image.pixels.size(); ++i) {
     const float* p = &buf[i * nc];
     image.pixels[i] = Rgb(decode(p[0]), decode(p[cg]), decode(p[cb]));
+  }
+  // Multi-layer EXR (what write_image makes of an image's layers): channels named <layer>.<channel> past the
+  // first three come back as layers, in file order.
+  for (int c = 3; c < nc;) {
+    const std::string& name = spec.channel_name(c);
+    const size_t dot = name.rfind('.');
+    if (dot == std::string::npos || dot == 0 || dot + 1 == name.size()) {  // not <layer>.<channel>: dropped
+      ++c;
+      continue;
+    }
+    ImageLayer layer{name.substr(0, dot), {}, {}};
+    const int first = c;
+    const auto same_layer = [&](const std::string& other) {
+      return other.size() > dot + 1 && other.compare(0, dot + 1, name, 0, dot + 1) == 0 &&
+             other.find('.', dot + 1) == std::string::npos;
+    };
+    while (c < nc && same_layer(spec.channel_name(c))) layer.channels.push_back(spec.channel_name(c++).substr(dot + 1));
+    const size_t k = layer.channels.size();
+    layer.values.resize(image.pixels.size() * k);
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+      for (size_t j = 0; j < k; ++j) layer.values[i * k + j] = buf[i * size_t(nc) + size_t(first) + j];
+    image.layers.push_back(std::move(layer));
   }
   return image;
 }

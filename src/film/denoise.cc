@@ -1,0 +1,226 @@
+#include "film/denoise.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/vec.h"
+
+namespace torte {
+
+namespace {
+
+const ImageLayer& required_layer(const Image& image, const char* name, size_t channels) {
+  const ImageLayer* l = image.layer(name);
+  if (!l)
+    throw Error(std::string("torte.denoise: the image has no '") + name +
+                "' layer (render it with aovs = {\"albedo\", \"normal\", \"depth\"} or denoise = true)");
+  if (l->channels.size() != channels || l->values.size() != image.pixels.size() * channels)
+    throw Error(std::string("torte.denoise: the '") + name + "' layer does not match the image");
+  return *l;
+}
+
+float luminance(Rgb c) { return c.luminance(); }
+
+// Albedo below this is treated as 1 when demodulating: dividing by it would amplify noise without bound.
+constexpr float kMinAlbedo = 1e-3f;
+
+struct Guide {
+  int w = 0, h = 0;
+  std::vector<Rgb> albedo;
+  std::vector<Vec3f> normal;
+  std::vector<float> depth, depth_slope;  // depth and its largest change to a 4-neighbour (for the depth weight)
+  // Pixels that see an area light (the "emission" layer, where present): emitted light is much brighter than the
+  // lighting next to it, so they are not neighbours of other pixels. Inside an emitter a pixel keeps its value;
+  // at its edge the render's coverage of the emitter is noisy, so the pixel is rebuilt as the lighting of its
+  // non-emitting neighbours times its albedo plus the layer's emission (from the AOV pass's stratified samples).
+  std::vector<uint8_t> emits;
+  bool hit(size_t i) const { return std::isfinite(depth[i]); }
+};
+
+Guide make_guide(const Image& image) {
+  const ImageLayer& a = required_layer(image, "albedo", 3);
+  const ImageLayer& n = required_layer(image, "normal", 3);
+  const ImageLayer& z = required_layer(image, "depth", 1);
+  Guide g;
+  g.w = image.width, g.h = image.height;
+  const size_t count = image.pixels.size();
+  g.albedo.resize(count), g.normal.resize(count), g.depth.resize(count), g.depth_slope.resize(count);
+  g.emits.assign(count, 0);
+  if (const ImageLayer* e = image.layer("emission")) {
+    if (e->channels.size() != 3 || e->values.size() != 3 * count)
+      throw Error("torte.denoise: the 'emission' layer does not match the image");
+    for (size_t i = 0; i < count; ++i) g.emits[i] = e->at(i)[0] > 0 || e->at(i)[1] > 0 || e->at(i)[2] > 0;
+  }
+  for (size_t i = 0; i < count; ++i) {
+    const float* av = a.at(i);
+    const float* nv = n.at(i);
+    g.albedo[i] = Rgb(av[0], av[1], av[2]);
+    g.normal[i] = Vec3f(nv[0], nv[1], nv[2]);
+    g.depth[i] = z.values[i];
+  }
+  for (int y = 0; y < g.h; ++y)
+    for (int x = 0; x < g.w; ++x) {
+      const size_t i = size_t(y) * size_t(g.w) + size_t(x);
+      float slope = 0;
+      const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+      for (int k = 0; k < 4; ++k) {
+        if (nx[k] < 0 || ny[k] < 0 || nx[k] >= g.w || ny[k] >= g.h) continue;
+        const size_t j = size_t(ny[k]) * size_t(g.w) + size_t(nx[k]);
+        if (g.hit(i) && g.hit(j)) slope = std::max(slope, std::fabs(g.depth[j] - g.depth[i]));
+      }
+      g.depth_slope[i] = slope;
+    }
+  return g;
+}
+
+Rgb demodulate_factor(Rgb albedo) {
+  const auto f = [](float a) { return a > kMinAlbedo ? a : 1.0f; };
+  return {f(albedo.r), f(albedo.g), f(albedo.b)};
+}
+
+// Edge-stopping weight of neighbour j for pixel i at pixel distance `dist`, without the luminance term.
+float feature_weight(const Guide& g, size_t i, size_t j, float dist) {
+  if (g.hit(i) != g.hit(j) || g.emits[i] != g.emits[j]) return 0;
+  if (!g.hit(i)) return 1;  // escaped rays: the sky, smooth by construction
+  const float nd = std::max(0.0f, dot(g.normal[i], g.normal[j]));
+  const float wn = std::pow(nd, 64.0f);
+  const float dz = std::fabs(g.depth[i] - g.depth[j]);
+  const float wz = std::exp(-dz / (2 * g.depth_slope[i] * dist + 1e-3f * std::fabs(g.depth[i]) + 1e-6f));
+  const Rgb da = g.albedo[i] - g.albedo[j];
+  const float wa = std::exp(-(da.r * da.r + da.g * da.g + da.b * da.b) / 0.02f);
+  return wn * wz * wa;
+}
+
+// Per-pixel variance of the demodulated luminance: its spread over the 5x5 neighbours with matching features
+// (the signal varies little there, so the spread is mostly noise), then blurred over 3x3 as SVGF does.
+std::vector<float> estimate_variance(const Guide& g, const std::vector<Rgb>& light) {
+  const int w = g.w, h = g.h;
+  std::vector<float> raw(light.size()), out(light.size());
+  parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * size_t(w) + size_t(x);
+      double sw = 0, s1 = 0, s2 = 0;
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+          const int qx = x + dx, qy = y + dy;
+          if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+          const size_t j = size_t(qy) * size_t(w) + size_t(qx);
+          const float fw = feature_weight(g, i, j, std::sqrt(float(dx * dx + dy * dy)));
+          if (fw <= 0) continue;
+          const double l = luminance(light[j]);
+          sw += fw, s1 += fw * l, s2 += fw * l * l;
+        }
+      raw[i] = sw > 0 ? float(std::max(0.0, s2 / sw - (s1 / sw) * (s1 / sw))) : 0.0f;
+    }
+  });
+  parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      float s = 0, sw = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int qx = std::clamp(x + dx, 0, w - 1), qy = std::clamp(y + dy, 0, h - 1);
+          const float k = (dx == 0 ? 2.0f : 1.0f) * (dy == 0 ? 2.0f : 1.0f);
+          s += k * raw[size_t(qy) * size_t(w) + size_t(qx)], sw += k;
+        }
+      out[size_t(y) * size_t(w) + size_t(x)] = s / sw;
+    }
+  });
+  return out;
+}
+
+}  // namespace
+
+Image denoise(const Image& image, const DenoiseOptions& options) {
+  if (!(options.strength > 0 && options.strength <= 100))
+    throw Error("torte.denoise: 'strength' must be in (0, 100], got " + std::to_string(options.strength));
+  if (options.iterations < 1 || options.iterations > 10)
+    throw Error("torte.denoise: 'iterations' must be in [1, 10], got " + std::to_string(options.iterations));
+  if (image.width <= 0 || image.height <= 0 || image.pixels.size() != size_t(image.width) * size_t(image.height))
+    throw Error("torte.denoise: the image is empty");
+  const Guide g = make_guide(image);
+  const size_t count = image.pixels.size();
+  const int w = g.w, h = g.h;
+
+  // Lighting = colour / albedo (non-finite samples, which the film should not hold, count as black).
+  std::vector<Rgb> light(count), next(count);
+  for (size_t i = 0; i < count; ++i) {
+    const Rgb c = image.pixels[i].is_finite() ? image.pixels[i] : Rgb(0);
+    const Rgb f = demodulate_factor(g.albedo[i]);
+    light[i] = Rgb(c.r / f.r, c.g / f.g, c.b / f.b);
+  }
+  std::vector<float> var = estimate_variance(g, light), next_var(count);
+
+  constexpr float kKernel[5] = {1 / 16.0f, 1 / 4.0f, 3 / 8.0f, 1 / 4.0f, 1 / 16.0f};
+  const float sigma_l = 4 * options.strength;
+  for (int it = 0; it < options.iterations; ++it) {
+    const int step = 1 << it;
+    parallel_for(0, h, [&](int y) {
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * size_t(w) + size_t(x);
+        const float li = luminance(light[i]);
+        const float tol = sigma_l * std::sqrt(var[i]) + 1e-6f;
+        Rgb sum;
+        float sw = 0, svar = 0;
+        for (int ky = 0; ky < 5; ++ky)
+          for (int kx = 0; kx < 5; ++kx) {
+            const int dx = (kx - 2) * step, dy = (ky - 2) * step;
+            const int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+            const size_t j = size_t(qy) * size_t(w) + size_t(qx);
+            float wt = kKernel[kx] * kKernel[ky];
+            if (j != i) {
+              wt *= feature_weight(g, i, j, std::sqrt(float(dx * dx + dy * dy)));
+              wt *= std::exp(-std::fabs(li - luminance(light[j])) / tol);
+            }
+            if (wt <= 0) continue;
+            sum += light[j] * wt;
+            sw += wt;
+            svar += wt * wt * var[j];
+          }
+        next[i] = sum / sw;  // sw > 0: the centre tap always counts
+        next_var[i] = svar / (sw * sw);
+      }
+    });
+    light.swap(next);
+    var.swap(next_var);
+  }
+
+  // See Guide::emits.
+  const ImageLayer* emission = image.layer("emission");
+  const auto emitter_pixel = [&](size_t i) {
+    const int x = int(i % size_t(w)), y = int(i / size_t(w));
+    Rgb sum;
+    float sw = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int qx = x + dx, qy = y + dy;
+        if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+        const size_t j = size_t(qy) * size_t(w) + size_t(qx);
+        if (g.emits[j] || !g.hit(j) || !g.hit(i)) continue;
+        const float nd = std::max(0.0f, dot(g.normal[i], g.normal[j]));
+        const float wt = std::pow(nd, 64.0f) + 1e-6f;
+        sum += light[j] * wt, sw += wt;
+      }
+    if (sw == 0) return image.pixels[i];  // inside the emitter
+    const float* e = emission->at(i);
+    return (sum / sw) * g.albedo[i] + Rgb(e[0], e[1], e[2]);
+  };
+  Image out(w, h);
+  out.attributes = image.attributes;
+  out.layers = image.layers;
+  ImageLayer noisy{"noisy", {"R", "G", "B"}, std::vector<float>(3 * count)};
+  for (size_t i = 0; i < count; ++i) {
+    out.pixels[i] = g.emits[i] ? emitter_pixel(i) : light[i] * demodulate_factor(g.albedo[i]);
+    noisy.values[3 * i] = image.pixels[i].r, noisy.values[3 * i + 1] = image.pixels[i].g;
+    noisy.values[3 * i + 2] = image.pixels[i].b;
+  }
+  std::erase_if(out.layers, [](const ImageLayer& l) { return l.name == "noisy"; });
+  out.layers.push_back(std::move(noisy));
+  return out;
+}
+
+}  // namespace torte

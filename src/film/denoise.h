@@ -1,0 +1,23 @@
+// A feature-guided denoiser for renders with albedo, normal and depth layers (render/aov_pass.h).
+//
+// Intel Open Image Denoise, the usual choice, is not packaged for Debian 12, so torte filters by hand: an
+// edge-avoiding à-trous wavelet filter (Dammertz et al. 2010) with the variance-guided luminance weights of
+// SVGF (Schied et al. 2017), on the image divided by its albedo. Texture detail lives in the albedo, so it
+// survives the filtering untouched; what is smoothed is the lighting, and only between pixels whose normals,
+// depths and albedos agree and whose lighting differs by less than its estimated noise.
+#pragma once
+#include "film/image.h"
+
+namespace torte {
+
+struct DenoiseOptions {
+  float strength = 1;  // scales the luminance tolerance (in standard deviations of the noise estimate); > 0
+  int iterations = 5;  // à-trous passes, steps 1, 2, 4, ...: the filter reaches 2^(iterations + 2) pixels across
+};
+
+/// The denoised image: `image`'s pixels filtered as above, its layers kept, plus a layer "noisy" (R, G, B)
+/// holding the input pixels. Pixels an "emission" layer (when present) shows lit directly by emitters or the sky keep their values. Throws torte::Error when a layer it needs ("albedo", "normal", "depth") is missing
+/// or does not match the image's size, or when the options are out of range.
+Image denoise(const Image& image, const DenoiseOptions& options = {});
+
+}  // namespace torte

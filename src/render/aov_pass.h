@@ -1,0 +1,47 @@
+// Auxiliary outputs (AOVs): per-pixel features of what the camera sees, for compositing and for denoisers
+// (torte's own, film/denoise.h, and external ones such as OIDN, whose definitions these follow).
+//
+//   albedo         reflectance of the first non-specular surface (its BSDF's directional albedo, estimated by
+//                  sampling it), seen through mirrors and glass (times their specular weight); escaped rays give
+//                  the sky's radiance clamped to [0, 1]
+//   normal         world-space shading normal at that surface, turned towards the viewer
+//   depth          camera-space distance along the view axis to the first hit (+inf where nothing is hit)
+//   position       world-space first hit (0 where nothing is hit)
+//   emission       radiance the camera sees emitted at the first hit by area lights (as Cycles' Emit pass; the
+//                  sky is not in it): light without transport noise, which the denoiser keeps apart
+//   material_id    1 + dense index of the first hit's material (as the script assigned it: a mix is one id), 0
+//                  where nothing is hit; the most frequent id among the pixel's samples
+//
+// The pass traces its own camera samples (aov_samples per pixel, stratified over the pixel filter, and the lens),
+// independently of the integrator, so every integrator gets the same AOVs; deterministic for a seed.
+#pragma once
+#include <atomic>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "camera/camera.h"
+#include "film/image.h"
+#include "render/render_settings.h"
+#include "scene/scene.h"
+
+namespace torte {
+
+enum class Aov : uint8_t { Albedo, Normal, Depth, Position, MaterialId, Emission };
+
+inline constexpr const char* kAovChoices =
+    "\"albedo\", \"normal\", \"depth\", \"position\", \"material_id\" or \"emission\"";
+
+/// The AOV named `name` (as torte.render{aovs = ...} and --aovs spell it); false when none has that name.
+bool parse_aov(std::string_view name, Aov& out);
+const char* aov_name(Aov aov);
+
+/// The layers of `aovs` (in that order, each once) for `camera`'s view at settings' size, filter and seed, from
+/// `samples` camera samples per pixel. Layer names and channels are as multi-layer EXR readers expect
+/// (`albedo.R`, `normal.X`, `depth.Z`, `position.X`, `material_id.X`, `emission.R`). Stops early (the
+/// rows not done stay zero) when `cancel` becomes true.
+std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, const RenderSettings& settings,
+                                    const std::vector<Aov>& aovs, int samples,
+                                    const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace torte

@@ -1,0 +1,123 @@
+// The feature-guided denoiser (film/denoise.h) on synthetic images whose noise-free answer is known: noise
+// falls, texture detail in the albedo and edges between surfaces survive, means are kept, bad input is refused.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "core/vec.h"
+#include "film/denoise.h"
+
+using namespace torte;
+
+namespace {
+
+constexpr int kW = 64, kH = 64;
+
+struct Synthetic {
+  Image noisy;
+  std::vector<Rgb> truth;
+};
+
+// Lighting that varies smoothly, times an albedo checker of 8-pixel squares, plus noise of relative size
+// `noise`; normals and depth of one plane unless `split`, which turns the right half to face another way and
+// makes it four times brighter.
+Synthetic make(float noise, bool split = false) {
+  Synthetic s;
+  s.noisy = Image(kW, kH);
+  s.truth.resize(size_t(kW) * kH);
+  ImageLayer albedo{"albedo", {"R", "G", "B"}, {}}, normal{"normal", {"X", "Y", "Z"}, {}}, depth{"depth", {"Z"}, {}};
+  Pcg32 rng(7);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const bool right = split && x >= kW / 2;
+      const float a = split ? 0.5f : (((x / 8) + (y / 8)) % 2 ? 0.8f : 0.2f);
+      const float light = (right ? 4.0f : 1.0f) * (0.5f + 0.3f * float(x) / kW + 0.2f * float(y) / kH);
+      const size_t i = size_t(y) * kW + size_t(x);
+      s.truth[i] = Rgb(a * light);
+      // Noise like a renderer's: zero-mean, a sum of uniforms (close to Gaussian).
+      const float n = (rng.next_float() + rng.next_float() + rng.next_float() - 1.5f) * 2 * noise;
+      s.noisy.pixels[i] = Rgb(a * light * (1 + n));
+      albedo.values.insert(albedo.values.end(), {a, a, a});
+      const Vec3f nn = right ? Vec3f(0.7071f, 0, -0.7071f) : Vec3f(0, 0, -1);
+      normal.values.insert(normal.values.end(), {nn.x, nn.y, nn.z});
+      depth.values.push_back(3);
+    }
+  s.noisy.layers = {albedo, normal, depth};
+  return s;
+}
+
+double rmse(const std::vector<Rgb>& a, const std::vector<Rgb>& b, bool (*keep)(int, int) = nullptr) {
+  double sum = 0;
+  size_t n = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      if (keep && !keep(x, y)) continue;
+      const size_t i = size_t(y) * kW + size_t(x);
+      const Rgb d = a[i] - b[i];
+      sum += double(d.r) * d.r + double(d.g) * d.g + double(d.b) * d.b;
+      n += 3;
+    }
+  return std::sqrt(sum / double(n));
+}
+
+// Pixels next to an albedo checker edge.
+bool near_checker_edge(int x, int y) { return x % 8 == 0 || x % 8 == 7 || y % 8 == 0 || y % 8 == 7; }
+
+}  // namespace
+
+TEST_CASE("denoise: noise falls at least 3x, also at the texture's edges, and the mean is kept", "[denoise]") {
+  const Synthetic s = make(0.3f);
+  const Image out = denoise(s.noisy);
+  const double before = rmse(s.noisy.pixels, s.truth), after = rmse(out.pixels, s.truth);
+  INFO("rmse " << before << " -> " << after);
+  CHECK(after < before / 3);
+  const double edge_before = rmse(s.noisy.pixels, s.truth, near_checker_edge);
+  const double edge_after = rmse(out.pixels, s.truth, near_checker_edge);
+  INFO("at checker edges " << edge_before << " -> " << edge_after);
+  CHECK(edge_after < edge_before / 3);  // texture detail is in the albedo: not blurred
+  double m0 = 0, m1 = 0;
+  for (size_t i = 0; i < out.pixels.size(); ++i) m0 += s.noisy.pixels[i].g, m1 += out.pixels[i].g;
+  CHECK(m1 == Approx(m0).epsilon(0.01));
+}
+
+TEST_CASE("denoise: an edge between surfaces facing other ways stays sharp", "[denoise]") {
+  // Little noise, so that a column's mean is known to 0.6 %: a blur across the edge (4x brighter on the right)
+  // would pull the columns beside it towards each other by far more.
+  const Synthetic s = make(0.05f, true);
+  const Image out = denoise(s.noisy);
+  for (int x : {kW / 2 - 1, kW / 2}) {
+    double got = 0, want = 0;
+    for (int y = 0; y < kH; ++y) got += out.at(x, y).g, want += s.truth[size_t(y) * kW + size_t(x)].g;
+    INFO("column " << x);
+    CHECK(got == Approx(want).epsilon(0.02));
+  }
+  CHECK(rmse(out.pixels, s.truth) < rmse(s.noisy.pixels, s.truth) / 3);
+}
+
+TEST_CASE("denoise: the noisy input is kept as a layer, the features too", "[denoise]") {
+  const Synthetic s = make(0.1f);
+  const Image out = denoise(s.noisy);
+  const ImageLayer* noisy = out.layer("noisy");
+  REQUIRE(noisy);
+  for (size_t i = 0; i < s.noisy.pixels.size(); ++i) REQUIRE(noisy->at(i)[1] == s.noisy.pixels[i].g);
+  CHECK(out.layer("albedo"));
+  // Denoising the denoised image replaces its "noisy" layer rather than adding a second.
+  const Image again = denoise(out);
+  int count = 0;
+  for (const ImageLayer& l : again.layers) count += l.name == "noisy";
+  CHECK(count == 1);
+}
+
+TEST_CASE("denoise: missing or mismatched features and bad options are errors", "[denoise]") {
+  Synthetic s = make(0.1f);
+  Image no_albedo = s.noisy;
+  no_albedo.layers.erase(no_albedo.layers.begin());
+  CHECK_THROWS_WITH(denoise(no_albedo), Catch::Contains("'albedo'"));
+  Image short_depth = s.noisy;
+  short_depth.layers[2].values.pop_back();
+  CHECK_THROWS_WITH(denoise(short_depth), Catch::Contains("'depth'"));
+  CHECK_THROWS_WITH(denoise(s.noisy, {0, 5}), Catch::Contains("strength"));
+  CHECK_THROWS_WITH(denoise(s.noisy, {1, 0}), Catch::Contains("iterations"));
+  CHECK_THROWS_AS(denoise(Image()), Error);
+}
