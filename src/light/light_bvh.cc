@@ -1,0 +1,304 @@
+#include "light/light_bvh.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "geometry/quadric.h"
+#include "light/emissive_patches.h"
+
+namespace torte {
+
+namespace {
+
+float safe_sqrt(float v) { return std::sqrt(std::max(v, 0.0f)); }
+float safe_acos(float v) { return std::acos(std::clamp(v, -1.0f, 1.0f)); }
+
+// cos(a - b) and sin(a - b) with the difference clamped at 0 (angles given by their sines and cosines).
+float cos_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
+  return cos_a > cos_b ? 1.0f : cos_a * cos_b + sin_a * sin_b;
+}
+float sin_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
+  return cos_a > cos_b ? 0.0f : sin_a * cos_b - cos_a * sin_b;
+}
+
+Vec3f rotate(Vec3f v, Vec3f axis, float angle) {  // Rodrigues
+  const Vec3f k = normalize(axis);
+  const float c = std::cos(angle), s = std::sin(angle);
+  return v * c + cross(k, v) * s + k * (dot(k, v) * (1 - c));
+}
+
+// The cone of directions from p that reach the box: everything when p is inside its bounding sphere.
+DirectionCone subtended(const Bounds3f& b, Vec3f p) {
+  const Vec3f c = b.center();
+  const float r2 = length_squared(b.diagonal()) * 0.25f;
+  const float d2 = length_squared(p - c);
+  if (d2 <= r2) return DirectionCone::everywhere();
+  return {normalize(c - p), safe_sqrt(1 - r2 / d2), false};
+}
+
+// pbrt-v4's orientation measure of a cone of normals widened by theta_e (the SAOH's M_Omega).
+float orientation_measure(float cos_theta_o, float cos_theta_e) {
+  const float theta_o = safe_acos(cos_theta_o), theta_e = safe_acos(cos_theta_e);
+  const float theta_w = std::min(theta_o + theta_e, kPi);
+  const float sin_o = std::sin(theta_o);
+  return 2 * kPi * (1 - cos_theta_o) +
+         kPi / 2 * (2 * theta_w * sin_o - std::cos(theta_o - 2 * theta_w) - 2 * theta_o * sin_o + cos_theta_o);
+}
+
+LightBounds merge(const LightBounds& a, const LightBounds& b) {
+  if (a.phi == 0) return b;
+  if (b.phi == 0) return a;
+  LightBounds m;
+  m.bounds = torte::merge(a.bounds, b.bounds);
+  m.phi = a.phi + b.phi;
+  m.normals = merge(a.normals, b.normals);
+  m.cos_theta_e = std::min(a.cos_theta_e, b.cos_theta_e);
+  m.two_sided = a.two_sided || b.two_sided;
+  return m;
+}
+
+// The normals of an area light's mesh triangles (their winding's side), or every direction for quadrics.
+DirectionCone mesh_normals(const TriangleMesh& mesh) {
+  Vec3f sum{0, 0, 0};
+  std::vector<Vec3f> normals;
+  normals.reserve(mesh.triangle_count());
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Vec3f p0 = mesh.position(mesh.indices[3 * t]), p1 = mesh.position(mesh.indices[3 * t + 1]),
+                p2 = mesh.position(mesh.indices[3 * t + 2]);
+    const Vec3f n = cross(p1 - p0, p2 - p0);
+    if (length_squared(n) == 0) continue;
+    normals.push_back(normalize(n));
+    sum = sum + normalize(n) * mesh.triangle_area(t);
+  }
+  if (normals.empty() || length_squared(sum) == 0) return DirectionCone::everywhere();
+  const Vec3f w = normalize(sum);
+  float cos_min = 1;
+  for (const Vec3f& n : normals) cos_min = std::min(cos_min, dot(w, n));
+  // A little slack for rounding: a cone that excludes a true normal would make a light unreachable.
+  return {w, std::max(-1.0f, cos_min - 1e-4f), false};
+}
+
+}  // namespace
+
+DirectionCone merge(const DirectionCone& a, const DirectionCone& b) {
+  if (a.empty) return b;
+  if (b.empty) return a;
+  const float theta_a = safe_acos(a.cos_theta), theta_b = safe_acos(b.cos_theta);
+  const float theta_d = safe_acos(dot(a.w, b.w));
+  if (std::min(theta_d + theta_b, kPi) <= theta_a) return a;
+  if (std::min(theta_d + theta_a, kPi) <= theta_b) return b;
+  const float theta_o = (theta_a + theta_d + theta_b) / 2;
+  if (theta_o >= kPi) return DirectionCone::everywhere();
+  const float theta_r = theta_o - theta_a;
+  const Vec3f axis = cross(a.w, b.w);
+  if (length_squared(axis) < 1e-12f) return DirectionCone::everywhere();
+  return {normalize(rotate(a.w, axis, theta_r)), std::cos(theta_o), false};
+}
+
+float LightBounds::importance(Vec3f p, Vec3f n) const {
+  if (phi <= 0) return 0;
+  const Vec3f c = bounds.center();
+  // Clamp the distance at half the box's diagonal: inside or next to it the 1/d^2 falloff means nothing.
+  const float d2 = std::max(length_squared(p - c), length_squared(bounds.diagonal()) * 0.25f);
+  if (d2 == 0) return phi;  // a point light at p itself
+  const Vec3f wi = normalize(p - c);
+  float cos_w = dot(normals.w, wi);
+  if (two_sided) cos_w = std::fabs(cos_w);
+  const float sin_w = safe_sqrt(1 - cos_w * cos_w);
+  const DirectionCone sub = subtended(bounds, p);
+  const float cos_b = sub.cos_theta, sin_b = safe_sqrt(1 - cos_b * cos_b);
+  const float cos_o = normals.cos_theta, sin_o = safe_sqrt(1 - cos_o * cos_o);
+  // The angle between the emission cone and p, less the normal cone and the box's extent seen from p.
+  const float cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, cos_o), sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, cos_o);
+  const float cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+  if (cos_p <= cos_theta_e) return 0;
+  float importance = phi * cos_p / d2;
+  if (n.x != 0 || n.y != 0 || n.z != 0) {  // the receiver's cosine, over the box's extent
+    const float cos_i = std::fabs(dot(wi, n)), sin_i = safe_sqrt(1 - cos_i * cos_i);
+    importance *= cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
+  }
+  return std::max(importance, 0.0f);
+}
+
+LightBounds light_bounds(const EmitterView& scene, const Light& light, float power) {
+  LightBounds b;
+  if (!(power > 0)) return b;
+  switch (light.kind) {
+    case LightKind::Point:
+      b.bounds.extend(light.position);
+      b.normals = DirectionCone::everywhere();
+      b.cos_theta_e = std::cos(kPi / 2);
+      break;
+    case LightKind::Spot:
+      b.bounds.extend(light.position);
+      b.normals = {light.direction, 1, false};
+      b.cos_theta_e = light.cos_total;  // no light leaves beyond the cone
+      break;
+    case LightKind::Area:
+      if (light.object < scene.meshes.size()) {
+        const TriangleMesh& mesh = scene.meshes[light.object];
+        for (size_t t = 0; t < mesh.triangle_count(); ++t) b.bounds.extend(mesh.triangle_bounds(t));
+        b.normals = mesh_normals(mesh);
+      } else {
+        b.bounds = world_bounds(scene.quadrics[light.object - scene.meshes.size()]);
+        b.normals = DirectionCone::everywhere();
+      }
+      b.cos_theta_e = std::cos(kPi / 2);
+      b.two_sided = light.two_sided;
+      break;
+    case LightKind::Patches:
+      for (size_t k = 0; k < light.patches->size(); ++k) {
+        const EmissivePatch& q = light.patches->patch(k);
+        b.bounds.extend(q.p), b.bounds.extend(q.p + q.e1), b.bounds.extend(q.p + q.e2);
+        if (!q.triangle) b.bounds.extend(q.p + q.e1 + q.e2);
+        b.normals = merge(b.normals, DirectionCone{q.n, 1, false});
+        b.two_sided = b.two_sided || q.two_sided;
+      }
+      b.cos_theta_e = std::cos(kPi / 2);
+      break;
+    default:
+      return b;  // lights at infinity and directional lights: beside the BVH
+  }
+  if (b.bounds.empty()) return b;
+  b.phi = power;
+  return b;
+}
+
+LightBvh::LightBvh(const EmitterView& scene, std::span<const Light> lights, std::span<const float> power) {
+  light_count_ = lights.size();
+  trail_.assign(lights.size(), 0);
+  in_bvh_.assign(lights.size(), 0);
+  std::vector<LightBounds> all(lights.size());
+  std::vector<uint32_t> ids;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    if (!(power[i] > 0)) continue;
+    if (is_infinite_light(lights[i]) || lights[i].kind == LightKind::Distant) {
+      infinite_.push_back(uint32_t(i));
+      in_bvh_[i] = 2;
+      continue;
+    }
+    all[i] = light_bounds(scene, lights[i], power[i]);
+    if (all[i].phi > 0) ids.push_back(uint32_t(i)), in_bvh_[i] = 1;
+  }
+  if (!ids.empty()) {
+    nodes_.reserve(2 * ids.size());
+    build(ids, 0, ids.size(), all, 0, 0);
+  }
+}
+
+uint32_t LightBvh::build(std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<LightBounds>& all,
+                         uint64_t trail, int depth) {
+  const uint32_t index = uint32_t(nodes_.size());
+  nodes_.emplace_back();
+  if (end - begin == 1) {
+    nodes_[index] = {all[ids[begin]], ids[begin], true};
+    trail_[ids[begin]] = trail;
+    return index;
+  }
+  LightBounds node;
+  Bounds3f centroids;
+  for (size_t i = begin; i < end; ++i) node = merge(node, all[ids[i]]), centroids.extend(all[ids[i]].bounds.center());
+  // Binned split minimising the surface-area-orientation heuristic (Conty Estevez and Kulla 2018) over the
+  // three axes; equal centroids (or a depth near the trail's 64 bits) fall back to a split in the middle.
+  size_t mid = begin + (end - begin) / 2;
+  const Vec3f extent = centroids.diagonal();
+  if (depth < 60 && std::max({extent.x, extent.y, extent.z}) > 0) {
+    constexpr int kBins = 12;
+    float best = kInfinity;
+    int best_axis = -1, best_bin = 0;
+    const float kr = std::max({extent.x, extent.y, extent.z});
+    for (int axis = 0; axis < 3; ++axis) {
+      if (extent[axis] <= 0) continue;
+      LightBounds bins[kBins];
+      const auto bin_of = [&](uint32_t id) {
+        const float t = (all[id].bounds.center()[axis] - centroids.lo[axis]) / extent[axis];
+        return std::min(int(t * kBins), kBins - 1);
+      };
+      for (size_t i = begin; i < end; ++i) bins[bin_of(ids[i])] = merge(bins[bin_of(ids[i])], all[ids[i]]);
+      for (int split = 1; split < kBins; ++split) {
+        LightBounds lo, hi;
+        for (int k = 0; k < split; ++k) lo = merge(lo, bins[k]);
+        for (int k = split; k < kBins; ++k) hi = merge(hi, bins[k]);
+        if (lo.phi == 0 || hi.phi == 0) continue;
+        const auto cost = [](const LightBounds& b) {
+          return b.phi * orientation_measure(b.normals.cos_theta, b.cos_theta_e) * b.bounds.surface_area();
+        };
+        // Regularised by the axis' share of the extent, so thin slabs are not cut along their thin side.
+        const float c = (cost(lo) + cost(hi)) * kr / extent[axis];
+        if (c < best) best = c, best_axis = axis, best_bin = split;
+      }
+    }
+    if (best_axis >= 0) {
+      const int axis = best_axis;
+      const auto it = std::partition(ids.begin() + long(begin), ids.begin() + long(end), [&](uint32_t id) {
+        const float t = (all[id].bounds.center()[axis] - centroids.lo[axis]) / extent[axis];
+        return std::min(int(t * kBins), kBins - 1) < best_bin;
+      });
+      mid = size_t(it - ids.begin());
+      if (mid == begin || mid == end) mid = begin + (end - begin) / 2;
+    }
+  }
+  if (depth >= 63) throw Error("light BVH: too deep (over 63 levels)");
+  build(ids, begin, mid, all, trail, depth + 1);
+  const uint32_t second = build(ids, mid, end, all, trail | (uint64_t(1) << depth), depth + 1);
+  nodes_[index] = {node, second, false};
+  return index;
+}
+
+int LightBvh::sample(Vec3f p, Vec3f n, float u, float* pmf) const {
+  *pmf = 0;
+  const bool has_bvh = !nodes_.empty();
+  const float p_inf = infinite_.empty() ? 0.0f : float(infinite_.size()) / float(infinite_.size() + (has_bvh ? 1 : 0));
+  if (u < p_inf) {
+    const size_t k = std::min(size_t(u / p_inf * float(infinite_.size())), infinite_.size() - 1);
+    *pmf = p_inf / float(infinite_.size());
+    return int(infinite_[k]);
+  }
+  if (!has_bvh) return -1;
+  u = std::min((u - p_inf) / (1 - p_inf), 0x1.fffffep-1f);
+  float prob = 1 - p_inf;
+  uint32_t node = 0;
+  for (;;) {
+    const Node& nd = nodes_[node];
+    if (nd.leaf) {
+      if (nd.bounds.importance(p, n) <= 0) return -1;
+      *pmf = prob;
+      return int(nd.child_or_light);
+    }
+    const float i0 = nodes_[node + 1].bounds.importance(p, n), i1 = nodes_[nd.child_or_light].bounds.importance(p, n);
+    if (i0 <= 0 && i1 <= 0) return -1;
+    const float p0 = i0 / (i0 + i1);
+    if (u < p0) {
+      prob *= p0;
+      u = std::min(u / p0, 0x1.fffffep-1f);
+      node = node + 1;
+    } else {
+      prob *= 1 - p0;
+      u = std::min((u - p0) / (1 - p0), 0x1.fffffep-1f);
+      node = nd.child_or_light;
+    }
+  }
+}
+
+float LightBvh::pmf(Vec3f p, Vec3f n, int light) const {
+  if (light < 0 || size_t(light) >= light_count_ || in_bvh_[size_t(light)] == 0) return 0;
+  const bool has_bvh = !nodes_.empty();
+  const float p_inf = infinite_.empty() ? 0.0f : float(infinite_.size()) / float(infinite_.size() + (has_bvh ? 1 : 0));
+  if (in_bvh_[size_t(light)] == 2) return p_inf / float(infinite_.size());
+  float prob = 1 - p_inf;
+  uint64_t trail = trail_[size_t(light)];
+  uint32_t node = 0;
+  while (!nodes_[node].leaf) {
+    const Node& nd = nodes_[node];
+    const float i0 = nodes_[node + 1].bounds.importance(p, n), i1 = nodes_[nd.child_or_light].bounds.importance(p, n);
+    if (i0 <= 0 && i1 <= 0) return 0;
+    const bool second = trail & 1;
+    prob *= (second ? i1 : i0) / (i0 + i1);
+    node = second ? nd.child_or_light : node + 1;
+    trail >>= 1;
+  }
+  return nodes_[node].bounds.importance(p, n) > 0 ? prob : 0;
+}
+
+}  // namespace torte

@@ -1,0 +1,78 @@
+// Many-light sampling: a BVH over the bounded lights (pbrt-v4's BVHLightSampler after Conty Estevez and Kulla
+// 2018). Each node bounds its lights' positions, their emission directions (a cone around w of half angle
+// theta_o, widened by theta_e for the spread of emission off each normal) and their power; at a receiving point
+// the sampler descends choosing each child by its importance (power over squared distance, times how far the
+// point lies inside the cones), so a light far away or facing away is seldom chosen. Lights at infinity (and
+// directional lights) cannot be bounded: they are chosen uniformly with probability n_inf / (n_inf + 1), the
+// BVH root taking the rest, as pbrt does.
+//
+// Deterministic, no allocation per query, read-only after the build (shared by all threads).
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/bounds.h"
+#include "core/vec.h"
+#include "light/light.h"
+
+namespace torte {
+
+/// A cone of directions: the unit axis w and the cosine of its half angle (-1: every direction).
+struct DirectionCone {
+  Vec3f w{0, 0, 1};
+  float cos_theta = 1;
+  bool empty = true;
+  static DirectionCone everywhere() { return {{0, 0, 1}, -1, false}; }
+};
+/// The smallest cone holding both (pbrt-v4's Union).
+DirectionCone merge(const DirectionCone& a, const DirectionCone& b);
+
+/// What the sampler knows of a light or a group of lights.
+struct LightBounds {
+  Bounds3f bounds;
+  float phi = 0;              // power (any consistent unit: the sampler only compares)
+  DirectionCone normals;      // directions of the emitting surfaces' normals (or a spot's axis)
+  float cos_theta_e = 0;      // emission spreads this far off each normal: cos(pi/2) for diffuse, a spot's cone
+  bool two_sided = false;
+  /// Importance of the group for a receiver at p with normal n (n = 0: no receiver cosine): 0 when no light of
+  /// it can reach p. Conservative: never 0 for a light that can.
+  float importance(Vec3f p, Vec3f n) const;
+};
+
+/// The bounds of `light` for the sampler, or bounds with phi = 0 for lights at infinity, directional lights
+/// and lights of no power (those the BVH leaves out).
+LightBounds light_bounds(const EmitterView& scene, const Light& light, float power);
+
+class LightBvh {
+ public:
+  LightBvh() = default;
+  /// Builds over `lights` (`power[i]` from light_power): bounded lights of positive power in the BVH (binned
+  /// surface-area-orientation heuristic), lights at infinity beside it.
+  LightBvh(const EmitterView& scene, std::span<const Light> lights, std::span<const float> power);
+
+  bool empty() const { return light_count_ == 0; }
+  /// A light for a receiver at p (normal n, or 0) from one uniform number u in [0, 1); its probability in *pmf.
+  /// -1 (pmf 0) when no light can reach p.
+  int sample(Vec3f p, Vec3f n, float u, float* pmf) const;
+  /// The probability that sample(p, n, ...) returns `light`.
+  float pmf(Vec3f p, Vec3f n, int light) const;
+  size_t node_count() const { return nodes_.size(); }
+
+  struct Node {
+    LightBounds bounds;
+    uint32_t child_or_light = 0;  // inner: index of the second child (the first follows the node); leaf: light
+    bool leaf = false;
+  };
+
+ private:
+  uint32_t build(std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<LightBounds>& all,
+                 uint64_t trail, int depth);
+  std::vector<Node> nodes_;
+  std::vector<uint32_t> infinite_;      // indices of the lights at infinity
+  std::vector<uint64_t> trail_;         // per light: the branch bits from the root (bit d: second child at depth d)
+  std::vector<uint8_t> in_bvh_;         // per light: 1 in the BVH, 2 at infinity, 0 never chosen
+  size_t light_count_ = 0;
+};
+
+}  // namespace torte

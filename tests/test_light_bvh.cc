@@ -1,0 +1,193 @@
+// The many-light sampler (light/light_bvh.h): cone unions hold both cones, the probabilities of all lights sum to
+// one at any receiver, sampling frequencies follow them (chi-square), lights that cannot reach a point are never
+// chosen while those that can always may be, and lights at infinity keep their fixed share.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "chi2.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "light/light_bvh.h"
+
+using namespace torte;
+using namespace torte::test;
+
+namespace {
+
+Vec3f random_dir(Pcg32& rng) { return sample_uniform_sphere({rng.next_float(), rng.next_float()}); }
+
+// A unit-ish square emitter at `c` whose front faces `n` (winding), as a scene mesh.
+TriangleMesh quad(Vec3f c, Vec3f n, float size) {
+  const Frame f = Frame::from_z(normalize(n));
+  TriangleMesh m;
+  for (const auto [a, b] : {std::pair{-1, -1}, std::pair{1, -1}, std::pair{1, 1}, std::pair{-1, 1}})
+    m.add_vertex(c + f.s * (float(a) * size) + f.t * (float(b) * size));
+  m.add_triangle(0, 1, 2);
+  m.add_triangle(0, 2, 3);
+  return m;
+}
+
+struct TestScene {
+  std::vector<TriangleMesh> meshes;
+  std::vector<Light> lights;
+  std::vector<float> power;
+  EmitterView view() const { return {meshes, {}, {}, {0, 0, 0}, 20}; }
+};
+
+// Many small one-sided quads, points and spots scattered in a 20-unit cube, plus `infinite` lights at infinity.
+TestScene make_scene(int quads, int points, int spots, int infinite, uint64_t seed) {
+  TestScene s;
+  Pcg32 rng(seed);
+  const auto pos = [&] { return Vec3f(rng.next_float() * 20 - 10, rng.next_float() * 20 - 10, rng.next_float() * 20 - 10); };
+  for (int i = 0; i < quads; ++i) {
+    s.meshes.push_back(quad(pos(), random_dir(rng), 0.1f + rng.next_float()));
+    Light l;
+    l.kind = LightKind::Area;
+    l.object = uint32_t(i);
+    l.radiance = Rgb(0.5f + 4 * rng.next_float());
+    l.area = s.meshes.back().triangle_area(0) + s.meshes.back().triangle_area(1);
+    l.two_sided = i % 5 == 0;
+    s.lights.push_back(l);
+  }
+  for (int i = 0; i < points + spots; ++i) {
+    Light l;
+    l.kind = i < points ? LightKind::Point : LightKind::Spot;
+    l.position = pos();
+    l.radiance = Rgb(0.2f + rng.next_float());
+    l.direction = random_dir(rng);
+    l.cos_total = std::cos(0.3f + rng.next_float());
+    l.cos_falloff_start = std::min(1.0f, l.cos_total + 0.05f);
+    s.lights.push_back(l);
+  }
+  for (int i = 0; i < infinite; ++i) {
+    Light l;
+    l.kind = LightKind::Infinite;
+    l.radiance = Rgb(1);
+    s.lights.push_back(l);
+  }
+  for (const Light& l : s.lights) s.power.push_back(light_power(s.view(), l));
+  return s;
+}
+
+// Whether any point of light l can send light to p (exactly, by the light's own geometry).
+bool reaches(const TestScene& s, const Light& l, Vec3f p) {
+  if (l.kind == LightKind::Point) return true;
+  if (l.kind == LightKind::Spot) return dot(normalize(p - l.position), l.direction) > l.cos_total;
+  if (l.kind != LightKind::Area) return true;
+  const TriangleMesh& m = s.meshes[l.object];
+  const Vec3f p0 = m.position(0), n = normalize(cross(m.position(1) - p0, m.position(2) - p0));
+  return l.two_sided || dot(p - p0, n) > 0;
+}
+
+// A one-sided quad that p lies clearly behind: more than 30 degrees behind its plane and further away than twice
+// its size, so that even the quad's bounding box, as the sampler sees it, faces away from p.
+bool clearly_behind(const TestScene& s, const Light& l, Vec3f p) {
+  if (l.kind != LightKind::Area || l.two_sided) return false;
+  const TriangleMesh& m = s.meshes[l.object];
+  Vec3f c{0, 0, 0};
+  for (uint32_t i = 0; i < 4; ++i) c = c + m.position(i) * 0.25f;
+  const Vec3f n = normalize(cross(m.position(1) - m.position(0), m.position(2) - m.position(0)));
+  const float size = length(m.position(2) - m.position(0));
+  return dot(normalize(p - c), n) < -0.5f && length(p - c) > 2 * size;
+}
+
+}  // namespace
+
+TEST_CASE("light bvh: the union of two cones holds both", "[lights][light_bvh]") {
+  Pcg32 rng(3);
+  for (int t = 0; t < 2000; ++t) {
+    const DirectionCone a{random_dir(rng), std::cos(rng.next_float() * kPi), false};
+    const DirectionCone b{random_dir(rng), std::cos(rng.next_float() * kPi), false};
+    const DirectionCone m = merge(a, b);
+    for (int k = 0; k < 8; ++k) {
+      const DirectionCone& c = k % 2 ? a : b;
+      // A direction on the rim of c, which must lie in m.
+      const Frame f = Frame::from_z(c.w);
+      const float phi = rng.next_float() * 2 * kPi, sin_t = std::sqrt(std::max(0.0f, 1 - c.cos_theta * c.cos_theta));
+      const Vec3f d = f.to_world({sin_t * std::cos(phi), sin_t * std::sin(phi), c.cos_theta});
+      INFO("trial " << t);
+      REQUIRE(dot(m.w, d) >= m.cos_theta - 2e-4f);
+    }
+  }
+}
+
+TEST_CASE("light bvh: sampling follows the probabilities, and lights facing away are never chosen",
+          "[lights][light_bvh]") {
+  const TestScene s = make_scene(60, 20, 20, 0, 11);
+  const LightBvh bvh(s.view(), s.lights, s.power);
+  REQUIRE_FALSE(bvh.empty());
+  Pcg32 rng(5);
+  for (int trial = 0; trial < 6; ++trial) {
+    const Vec3f p(rng.next_float() * 24 - 12, rng.next_float() * 24 - 12, rng.next_float() * 24 - 12);
+    const Vec3f n = trial % 2 ? random_dir(rng) : Vec3f(0, 0, 0);
+    INFO("receiver " << p.x << " " << p.y << " " << p.z << " normal " << n.x << " " << n.y << " " << n.z);
+    // Bin per light plus one for "no light": the bounds are conservative, so the descent may reach a leaf that
+    // cannot light p and return none; that probability is what the lights' sum lacks of 1.
+    double sum = 0;
+    std::vector<double> expected(s.lights.size() + 1);
+    for (size_t l = 0; l < s.lights.size(); ++l) {
+      const float pmf = bvh.pmf(p, n, int(l));
+      sum += pmf;
+      expected[l] = pmf;
+      if (clearly_behind(s, s.lights[l], p)) {
+        INFO("light " << l << " faces away from the receiver");
+        CHECK(pmf == 0);
+      }
+    }
+    CHECK(sum <= 1 + 1e-5);
+    CHECK(sum > 0.5);
+    expected.back() = std::max(0.0, 1 - sum);
+    constexpr int kSamples = 200000;
+    std::vector<double> observed(s.lights.size() + 1);
+    for (int k = 0; k < kSamples; ++k) {
+      float pmf = 0;
+      const int l = bvh.sample(p, n, rng.next_float(), &pmf);
+      if (l < 0) {
+        REQUIRE(pmf == 0);
+        observed.back() += 1;
+        continue;
+      }
+      REQUIRE(pmf == Approx(bvh.pmf(p, n, l)).epsilon(1e-4));
+      observed[size_t(l)] += 1;
+    }
+    for (double& e : expected) e *= kSamples;
+    const Chi2Result r = chi2_test(observed, expected, 0.01, 6);
+    INFO(r.message);
+    CHECK(r.passed);
+  }
+}
+
+TEST_CASE("light bvh: a light that can reach the receiver is never given probability zero", "[lights][light_bvh]") {
+  const TestScene s = make_scene(200, 30, 30, 0, 29);
+  const LightBvh bvh(s.view(), s.lights, s.power);
+  Pcg32 rng(8);
+  for (int trial = 0; trial < 300; ++trial) {
+    const Vec3f p(rng.next_float() * 30 - 15, rng.next_float() * 30 - 15, rng.next_float() * 30 - 15);
+    for (size_t l = 0; l < s.lights.size(); ++l)
+      if (reaches(s, s.lights[l], p)) {
+        INFO("trial " << trial << " light " << l);
+        REQUIRE(bvh.pmf(p, {0, 0, 0}, int(l)) > 0);
+      }
+  }
+}
+
+TEST_CASE("light bvh: lights at infinity share n / (n + 1) uniformly; only they when nothing is bounded",
+          "[lights][light_bvh]") {
+  const TestScene s = make_scene(10, 0, 0, 2, 4);
+  const LightBvh bvh(s.view(), s.lights, s.power);
+  const Vec3f p(0.5f, 0.25f, 0);
+  CHECK(bvh.pmf(p, {0, 0, 0}, 10) == Approx(1 / 3.0f));
+  CHECK(bvh.pmf(p, {0, 0, 0}, 11) == Approx(1 / 3.0f));
+  double bounded = 0;
+  for (int l = 0; l < 10; ++l) bounded += bvh.pmf(p, {0, 0, 0}, l);
+  CHECK(bounded == Approx(1 / 3.0).epsilon(1e-4));
+
+  const TestScene sky_only = make_scene(0, 0, 0, 1, 4);
+  const LightBvh only(sky_only.view(), sky_only.lights, sky_only.power);
+  float pmf = 0;
+  CHECK(only.sample(p, {0, 0, 0}, 0.7f, &pmf) == 0);
+  CHECK(pmf == 1);
+  CHECK(only.pmf(p, {0, 0, 0}, 0) == 1);
+  CHECK(LightBvh().empty());
+}
