@@ -262,6 +262,9 @@ int l_render(lua_State* L) {
   // The seed's direct-lighting renderer samples every light at every hit; path tracing picks one by power. igi
   // handles direct light as direct does.
   s.sample_all_lights = kw.boolean("sample_all_lights", ends_after_first_scatter(s.integrator));
+  // The one light of next-event estimation: by the light BVH from the shading point, or by power alone.
+  if (const std::string ls = kw.string("light_sampler", "bvh"); ls == "power") s.light_sampler = LightSamplerKind::Power;
+  else if (ls != "bvh") kw.fail("light_sampler", "must be \"bvh\" or \"power\", got \"" + ls + "\"");
   // Instant global illumination (render/igi.h); accepted (and checked) with any integrator, used by igi only.
   s.vpl_sets = kw.integer("vpl_sets", s.vpl_sets);
   s.light_paths = kw.integer("light_paths", s.light_paths);

@@ -17,11 +17,6 @@ namespace OCIO = OCIO_NAMESPACE;
 
 namespace {
 
-// Linear Rec.709/sRGB primaries (D65) to CIE XYZ, IEC 61966-2-1 (the same white point as OCIO's display
-// transforms, so no chromatic adaptation).
-constexpr double kRec709ToXyz[16] = {0.4124564, 0.3575761, 0.1804375, 0, 0.2126729, 0.7151522, 0.0721750, 0,
-                                     0.0193339, 0.1191920, 0.9503041, 0, 0,         0,         0,         1};
-
 OCIO::TransformRcPtr builtin(const char* style, OCIO::TransformDirection dir = OCIO::TRANSFORM_DIR_FORWARD) {
   OCIO::BuiltinTransformRcPtr t = OCIO::BuiltinTransform::Create();
   t->setStyle(style);
@@ -32,20 +27,24 @@ OCIO::TransformRcPtr builtin(const char* style, OCIO::TransformDirection dir = O
 OCIO::ConstCPUProcessorRcPtr make_processor(ViewTransform view) {
   OCIO::GroupTransformRcPtr group = OCIO::GroupTransform::Create();
   if (view == ViewTransform::Standard) {
-    OCIO::MatrixTransformRcPtr to_xyz = OCIO::MatrixTransform::Create();
-    to_xyz->setMatrix(kRec709ToXyz);
-    group->appendTransform(to_xyz);
+    // The sRGB curve itself (IEC 61966-2-1: gamma 2.4, offset 0.055, linear below), inverted to encode. Going
+    // through XYZ and OCIO's sRGB display instead differs by a matrix round trip, up to 2e-4: a step of 8 bits.
+    OCIO::ExponentWithLinearTransformRcPtr srgb = OCIO::ExponentWithLinearTransform::Create();
+    srgb->setGamma({2.4, 2.4, 2.4, 1});
+    srgb->setOffset({0.055, 0.055, 0.055, 0});
+    srgb->setDirection(OCIO::TRANSFORM_DIR_INVERSE);
+    group->appendTransform(srgb);
   } else {
     // ACES 1.0 SDR video on an sRGB display, as the ACES OCIO configs chain it: scene-linear Rec.709 to
     // ACEScg (AP1), to ACES2065-1 (AP0), through the reference rendering and output transform to display XYZ.
     group->appendTransform(builtin("UTILITY - ACES-AP1_to_LINEAR-REC709_BFD", OCIO::TRANSFORM_DIR_INVERSE));
     group->appendTransform(builtin("ACEScg_to_ACES2065-1"));
     group->appendTransform(builtin("ACES-OUTPUT - ACES2065-1_to_CIE-XYZ-D65 - SDR-VIDEO_1.0"));
+    group->appendTransform(builtin("DISPLAY - CIE-XYZ-D65_to_sRGB"));
   }
-  group->appendTransform(builtin("DISPLAY - CIE-XYZ-D65_to_sRGB"));
   OCIO::ConstConfigRcPtr config = OCIO::Config::CreateRaw();
   return config->getProcessor(group)->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32,
-                                                               OCIO::OPTIMIZATION_DEFAULT);
+                                                               OCIO::OPTIMIZATION_LOSSLESS);
 }
 
 const OCIO::ConstCPUProcessorRcPtr& processor(ViewTransform view) {

@@ -30,6 +30,10 @@ inline bool ends_after_first_scatter(IntegratorKind k) {
 constexpr uint64_t kMaxRenderPixels = uint64_t(1) << 28;
 constexpr int kMaxSpp = 1 << 24;
 
+// How next-event estimation picks the light for a shading point: by a light BVH from that point (light/light_bvh.h:
+// nearby, facing lights first) or by power alone (one table for every point).
+enum class LightSamplerKind : uint8_t { Bvh, Power };
+
 struct RenderSettings {
   int width = 512, height = 512;
   int spp = 16;
@@ -40,6 +44,7 @@ struct RenderSettings {
   Filter filter = Filter::box();
   int rr_depth = 3;                // Russian roulette from this many scattering events on
   bool sample_all_lights = false;  // one shadow ray per light at every vertex instead of one light by power
+  LightSamplerKind light_sampler = LightSamplerKind::Bvh;  // for the one light (camera paths' NEE)
   int tile_size = 16;
   // Instant global illumination only: see IgiSettings (render/integrator_igi.h) for their meaning.
   int vpl_sets = 4;
@@ -56,6 +61,7 @@ struct TransportRules {
   bool sample_all_lights = false;  // next-event estimation towards every light instead of one by power
   bool specular_chains_only = false;  // end at the next hit after the first non-specular event (direct light)
   bool add_emission = true;  // false for light paths: emitters their rays find add nothing (add_emission)
+  LightSamplerKind light_sampler = LightSamplerKind::Bvh;  // set from RenderSettings by Wavefront
 };
 
 struct RenderStats {

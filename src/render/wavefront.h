@@ -40,7 +40,9 @@ class Wavefront {
   /// `camera` must be made for the image size of `image`; all references must outlive the wavefront.
   Wavefront(const Scene& scene, const Camera& camera, const RenderSettings& image, const Sampler& sampler,
             const TransportRules& rules)
-      : scene_(scene), camera_(camera), image_(image), sampler_(sampler), rules_(rules) {}
+      : scene_(scene), camera_(camera), image_(image), sampler_(sampler), rules_(rules) {
+    rules_.light_sampler = image.light_sampler;
+  }
 
   /// Renders the requested camera samples and adds them to the film; counts rays and dropped samples.
   template <class Hook = NoWavefrontHook>

@@ -54,6 +54,7 @@ void Scene::finalize(ProgressCounter* progress) {
                   " in float; lower its intensity (or the emitter's size)");
   }
   light_selection = lights.empty() ? Distribution1D() : Distribution1D(power);
+  light_bvh = LightBvh(*this, lights, power);  // before release_positions: it reads emitting triangles
   release_positions();
 }
 

@@ -12,6 +12,7 @@
 #include "geometry/mesh.h"
 #include "geometry/quadric.h"
 #include "light/light.h"
+#include "light/light_bvh.h"
 #include "material/material.h"
 #include "texture/texture.h"
 
@@ -60,7 +61,8 @@ class Scene {
   MaterialTables materials;
   TextureTable textures;
   std::vector<Light> lights;
-  Distribution1D light_selection;  // light selection proportional to power
+  Distribution1D light_selection;  // light selection proportional to power (light paths; NEE with "power")
+  LightBvh light_bvh;              // light selection for a shading point (NEE; light/light_bvh.h)
 
   // Builds the BVHs (top-level geometry, every prototype, the instance level) and the light distribution; call
   // after filling the arrays above.

@@ -38,6 +38,8 @@ const std::vector<Config> kConfigs = {
     {"cornell-box.lua", {"integrator=direct"}},
     {"cornell-box.lua", {"integrator=igi", "vpl_sets=2", "light_paths=8"}},
     {"shapes.lua", {}},
+    {"many-lights.lua", {}},
+    {"many-lights.lua", {"light_sampler=power", "integrator=direct"}},
     {"lights.lua", {"light=mixed"}},
     {"lights.lua", {"light=spot", "camera=orthographic"}},
     {"lights.lua", {"light=directional"}},
