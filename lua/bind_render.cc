@@ -256,8 +256,11 @@ int l_render(lua_State* L) {
     s.integrator = IntegratorKind::Igi;
   } else if (integrator == "lt") {
     s.integrator = IntegratorKind::Lt;
+  } else if (integrator == "bdpt") {
+    s.integrator = IntegratorKind::Bdpt;
   } else {
-    kw.fail("integrator", "must be \"path\", \"direct\", \"igi\" or \"lt\", got \"" + integrator + "\"");
+    kw.fail("integrator",
+            "must be \"path\", \"direct\", \"igi\", \"lt\" or \"bdpt\", got \"" + integrator + "\"");
   }
   // The seed's direct-lighting renderer samples every light at every hit; path tracing picks one by power. igi
   // handles direct light as direct does.
@@ -285,6 +288,12 @@ int l_render(lua_State* L) {
   if (s.integrator == IntegratorKind::Lt)  // light paths connect to the camera: it must allow that
     if (const std::string why = Camera(*camera, s.width, s.height).connect_problem(); !why.empty())
       kw.fail("camera", "cannot be used with integrator \"lt\": " + why);
+  if (s.integrator == IntegratorKind::Bdpt) {  // as lt, and perspective only (integrator_bdpt.h)
+    const Camera cam(*camera, s.width, s.height);
+    std::string why = cam.connect_problem();
+    if (why.empty() && cam.desc().kind != CameraKind::Perspective) why = "bdpt needs a perspective camera";
+    if (!why.empty()) kw.fail("camera", "cannot be used with integrator \"bdpt\": " + why);
+  }
   if (ctx.spp_override > 0) s.spp = ctx.spp_override;
   if (ctx.seed_override >= 0) s.seed = uint64_t(ctx.seed_override);
   if (ctx.interrupted || interrupt_requested()) throw Interrupted("interrupted: torte.render was not started");

@@ -36,6 +36,8 @@ bool emit_diffuse(Vec3f q, Vec3f n, float pdf_area, bool two_sided, Rgb radiance
   s->normal = n;
   s->dir = normalize(Frame::from_z(n).to_world(local));
   s->weight = radiance * (kPi / (pdf_area * side_pdf));
+  s->pdf_pos = pdf_area;
+  s->pdf_dir = side_pdf * local.z * kInvPi;
   return !s->weight.is_black();
 }
 
@@ -44,11 +46,13 @@ bool emit_diffuse(Vec3f q, Vec3f n, float pdf_area, bool two_sided, Rgb radiance
 bool sample_emission(const EmitterView& scene, const Light& light, Vec2f u_pos, Vec2f u_dir, float uc,
                      EmissionSample* s) {
   s->normal = Vec3f(0, 0, 0);
+  s->pdf_pos = s->pdf_dir = 1;
   switch (light.kind) {
     case LightKind::Point: {
       s->origin = light.position;
       s->dir = sample_uniform_sphere(u_dir);
       s->weight = light.radiance / uniform_sphere_pdf();
+      s->pdf_dir = uniform_sphere_pdf();
       return !s->weight.is_black();
     }
     case LightKind::Spot: {
@@ -57,11 +61,14 @@ bool sample_emission(const EmitterView& scene, const Light& light, Vec2f u_pos, 
       s->dir = sample_spot_emission(light, u_dir, &pdf);
       if (!(pdf > 0) || !std::isfinite(pdf)) return false;
       s->weight = light.radiance * (spot_falloff(light, dot(s->dir, light.direction)) / pdf);
+      s->pdf_dir = pdf;
       return !s->weight.is_black();
     }
     case LightKind::Distant: {
       s->dir = light.direction;
-      s->weight = light.radiance * disk_origin(scene, s->dir, u_pos, &s->origin);
+      const float disk = disk_origin(scene, s->dir, u_pos, &s->origin);
+      s->weight = light.radiance * disk;
+      s->pdf_pos = 1 / disk;
       return !s->weight.is_black();
     }
     case LightKind::Infinite:
@@ -83,7 +90,10 @@ bool sample_emission(const EmitterView& scene, const Light& light, Vec2f u_pos, 
       }
       if (!(pdf > 0) || !std::isfinite(pdf)) return false;
       s->dir = -wi;
-      s->weight = le * (disk_origin(scene, s->dir, u_pos, &s->origin) / pdf);
+      const float disk = disk_origin(scene, s->dir, u_pos, &s->origin);
+      s->weight = le * (disk / pdf);
+      s->pdf_pos = 1 / disk;
+      s->pdf_dir = pdf;
       return !s->weight.is_black();
     }
     case LightKind::Patches: {

@@ -13,6 +13,9 @@ struct EmissionSample {
   Vec3f dir;     // unit direction the light travels
   Vec3f normal;  // area lights: the surface normal on the emitting side (for offsetting the origin); else 0
   Rgb weight;    // Le * |cos| / (pdf of origin * pdf of direction): flux carried by the ray
+  float pdf_pos = 1;  // density of the origin: over area (area lights, patches, the disk of lights at infinity);
+                      // 1 for point and spot lights (a delta in position)
+  float pdf_dir = 1;  // solid-angle density of dir (1 for distant lights, a delta in direction)
 };
 
 // Samples a ray leaving `light`: area lights pick a point uniformly by area, then a cosine-distributed direction

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/memory_budget.h"
 #include "film/film.h"
+#include "render/integrator_bdpt.h"
 #include "render/integrator_direct.h"
 #include "render/integrator_igi.h"
 #include "render/integrator_lt.h"
@@ -44,8 +45,8 @@ std::string texture_failure(const Scene& scene) {
 
 uint64_t render_memory_bytes(const RenderSettings& s) {
   const uint64_t pixels = uint64_t(std::max(s.width, 0)) * uint64_t(std::max(s.height, 0));
-  // The film, then the image made from it; light tracing's film also holds a splat sum per pixel.
-  const uint64_t splats = s.integrator == IntegratorKind::Lt ? sizeof(Rgb) : 0;
+  // The film, then the image made from it; light tracing's and BDPT's film also holds a splat sum per pixel.
+  const uint64_t splats = splats_to_film(s.integrator) ? sizeof(Rgb) : 0;
   return pixels * (sizeof(PixelSum) + sizeof(Rgb) + splats);
 }
 
@@ -59,6 +60,7 @@ RenderOutput render(const Scene& scene, const Camera& camera, const RenderSettin
     case IntegratorKind::Direct: return render_direct(scene, camera, settings, progress, cancel);
     case IntegratorKind::Igi: return render_igi(scene, camera, settings, progress, cancel);
     case IntegratorKind::Lt: return render_lt(scene, camera, settings, progress, cancel);
+    case IntegratorKind::Bdpt: return render_bdpt(scene, camera, settings, progress, cancel);
   }
   throw Error("internal: unknown integrator");
 }

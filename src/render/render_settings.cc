@@ -31,8 +31,9 @@ void validate(const RenderSettings& s, const Camera& camera) {
     throw Error("the camera was made for a " + std::to_string(int(camera.image_width())) + "x" +
                 std::to_string(int(camera.image_height())) + " image, the settings ask for " + std::to_string(s.width) +
                 "x" + std::to_string(s.height));
-  if (s.integrator == IntegratorKind::Lt)
-    if (const std::string why = camera.connect_problem(); !why.empty()) throw Error("integrator 'lt': " + why);
+  if (s.integrator == IntegratorKind::Lt || s.integrator == IntegratorKind::Bdpt)
+    if (const std::string why = camera.connect_problem(); !why.empty())
+      throw Error(std::string("integrator '") + (s.integrator == IntegratorKind::Lt ? "lt" : "bdpt") + "': " + why);
 }
 
 }  // namespace torte

@@ -18,7 +18,11 @@ enum class IntegratorKind : uint8_t {
   Direct,  // direct lighting only (MIS between light and BSDF sampling); equals Path at max_depth 1
   Igi,     // instant global illumination (render/integrator_igi.h): Direct plus indirect light from VPLs
   Lt,      // light tracing (render/integrator_lt.h): light paths connected to the camera and splatted
+  Bdpt,    // bidirectional path tracing (render/integrator_bdpt.h): every (s, t) strategy, MIS-weighted
 };
+
+// Integrators whose light paths connect to the camera and splat (the film keeps a splat sum per pixel).
+inline bool splats_to_film(IntegratorKind k) { return k == IntegratorKind::Lt || k == IntegratorKind::Bdpt; }
 
 // Direct and Igi follow camera paths through specular chains only (the lighting they leave out is reached by
 // light sampling at every vertex, so torte.render{} samples all lights by default for them).

@@ -103,8 +103,9 @@ inline void push_shadow_ray(ShadowQueue& shadows, const SurfaceHit& s, Vec3f wi,
 // outgoing direction): checks the sides, updates throughput and flags, applies Russian roulette and pushes the
 // next ray to ctx.next. A path that stops here is simply not pushed. Light paths (TransportMode::Importance)
 // also take the adjoint shading-normal factor |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|) (Veach 1997, 5.3).
+// `dim_base` offsets the roulette's sampler dimension (BDPT's light subpaths, as in sort_hits).
 inline void continue_path(const ShadeContext& ctx, uint32_t slot, const Frame& frame, Vec3f wo_local,
-                          const BsdfSample& bs, TransportMode mode = TransportMode::Radiance) {
+                          const BsdfSample& bs, TransportMode mode = TransportMode::Radiance, uint32_t dim_base = 0) {
   PathState& ps = ctx.paths;
   const uint32_t i = ctx.rays.path[slot];
   const SurfaceHit& s = ctx.hits.surface[slot];
@@ -123,7 +124,7 @@ inline void continue_path(const ShadeContext& ctx, uint32_t slot, const Frame& f
   // inside glass are not cut for carrying "too much" radiance; compensated by 1/q (unbiased).
   if (depth + 1 >= ctx.rules.rr_depth) {
     const float q = std::min(0.95f, (beta * ps.eta_scale[i]).max_component());
-    if (!(ctx.sampler.get_1d(ps.pixel[i], ps.sample[i], bounce_dim(depth, kDimRoulette)) < q)) return;
+    if (!(ctx.sampler.get_1d(ps.pixel[i], ps.sample[i], dim_base + bounce_dim(depth, kDimRoulette)) < q)) return;
     beta = beta / q;
   }
   ps.beta[i] = beta;

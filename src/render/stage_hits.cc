@@ -9,7 +9,7 @@
 namespace torte {
 
 void sort_hits(const Scene& scene, const TransportRules& rules, const Sampler& sampler, float spread,
-               const RayQueue& rays, HitQueue& hits, PathState& ps, MaterialQueues& out) {
+               const RayQueue& rays, HitQueue& hits, PathState& ps, MaterialQueues& out, uint32_t dim_base) {
   uint32_t counts[kMaterialTypeCount] = {};
   const size_t n = rays.size();
   out.unsorted.resize(n);
@@ -29,8 +29,8 @@ void sort_hits(const Scene& scene, const TransportRules& rules, const Sampler& s
     // Voxel faces and cell shapes carry their own material (SurfaceHit::material, -1 = the object's).
     const MaterialRef m = resolve_material(
         scene, scene.material_of(s), s, ps.footprint[i],
-        [&] { return sampler.get_1d(px, si, bounce_dim(ps.depth[i], kDimMaterialMix)); },
-        mix_bits((uint64_t(px) << 32 | si) ^ (uint64_t(ps.depth[i]) << 56)));
+        [&] { return sampler.get_1d(px, si, dim_base + bounce_dim(ps.depth[i], kDimMaterialMix)); },
+        mix_bits((uint64_t(px) << 32 | si) ^ (uint64_t(ps.depth[i]) << 56) ^ dim_base));
     hits.material[k] = m;
     ++counts[int(m.type)];
     out.unsorted[kept++] = uint32_t(k);

@@ -22,8 +22,9 @@ struct MaterialQueues {
 };
 
 /// Reconstructs hits.surface[k] for every ray k that hit and queues the paths that go on; `spread` is the
-/// camera's ray-cone spread angle.
+/// camera's ray-cone spread angle. `dim_base` offsets the sampler dimensions Mix materials draw (BDPT's light
+/// subpaths use their own, so they do not share numbers with the camera subpath of the same sample).
 void sort_hits(const Scene& scene, const TransportRules& rules, const Sampler& sampler, float spread,
-               const RayQueue& rays, HitQueue& hits, PathState& paths, MaterialQueues& out);
+               const RayQueue& rays, HitQueue& hits, PathState& paths, MaterialQueues& out, uint32_t dim_base = 0);
 
 }  // namespace torte

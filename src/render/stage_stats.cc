@@ -16,6 +16,7 @@ const char* item_unit(Stage s) {
     case Stage::Emission: return "rays";
     case Stage::Shadows: return "rays";
     case Stage::VplGather: return "rays queued";
+    case Stage::Connect: return "samples";
     case Stage::Film: return "samples";
     case Stage::Count: break;
   }
@@ -35,6 +36,7 @@ const char* stage_name(Stage s) {
     case Stage::Emission: return "emission";
     case Stage::Shadows: return "shadows";
     case Stage::VplGather: return "vpl_gather";
+    case Stage::Connect: return "connect";
     case Stage::Film: return "film";
     case Stage::Count: break;
   }
@@ -80,8 +82,8 @@ std::string format_stage_table(const StageStats& st, double wall_seconds) {
   };
   for (int i = 0; i < kStageCount; ++i) {
     const Stage s = Stage(i);
-    // IGI's stages only for renders that ran them.
-    if ((s == Stage::VplPass || s == Stage::VplGather) && st[s].calls == 0) continue;
+    // IGI's and BDPT's own stages only for renders that ran them.
+    if ((s == Stage::VplPass || s == Stage::VplGather || s == Stage::Connect) && st[s].calls == 0) continue;
     row(stage_name(s), st[s], item_unit(s), traces_rays(s));
     if (s == Stage::Emission)  // shading comes between emission and shadows, one line per type that was hit
       for (int t = 0; t < kShadedMaterialTypeCount; ++t)

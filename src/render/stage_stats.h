@@ -20,6 +20,7 @@ enum class Stage : uint8_t {
   Emission,   // escaped rays and emitters hit: light found by the path's own rays
   Shadows,    // shadow rays traced (IGI's VPL shadow rays too)
   VplGather,  // IGI: shadow rays towards the VPLs queued at the shaded hits
+  Connect,    // BDPT: every strategy of the subpaths evaluated and MIS-weighted, connection rays queued
   Film,       // finished paths added to the film
   Count
 };

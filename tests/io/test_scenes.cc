@@ -135,6 +135,11 @@ TEST_CASE("scenes: the Cornell box with light tracing", "[scenes][lt]") {
   check_renders(dir, fs::path(TORTE_SOURCE_DIR) / "scenes" / "cornell-box.lua", {"integrator=lt", "max_depth=3"});
 }
 
+TEST_CASE("scenes: the Cornell box with bidirectional path tracing", "[scenes][bdpt]") {
+  ScenesDir dir("cornell_bdpt");
+  check_renders(dir, fs::path(TORTE_SOURCE_DIR) / "scenes" / "cornell-box.lua", {"integrator=bdpt", "max_depth=3"});
+}
+
 TEST_CASE("scenes: shapes.lua and lights.lua with direct lighting", "[scenes]") {
   ScenesDir dir("direct");
   const fs::path scenes = fs::path(TORTE_SOURCE_DIR) / "scenes";

