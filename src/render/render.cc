@@ -2,14 +2,11 @@
 
 #include <algorithm>
 
-#include "core/error.h"
+#include <hwy/targets.h>
+
 #include "core/memory_budget.h"
 #include "film/film.h"
-#include "render/integrator_bdpt.h"
-#include "render/integrator_direct.h"
-#include "render/integrator_igi.h"
-#include "render/integrator_lt.h"
-#include "render/integrator_path.h"
+#include "render/render_isa.h"
 #include "render/tile_loop.h"
 
 namespace torte {
@@ -45,8 +42,8 @@ std::string texture_failure(const Scene& scene) {
 
 uint64_t render_memory_bytes(const RenderSettings& s) {
   const uint64_t pixels = uint64_t(std::max(s.width, 0)) * uint64_t(std::max(s.height, 0));
-  // The film, then the image made from it; light tracing's and BDPT's film also holds a splat sum per pixel.
-  const uint64_t splats = splats_to_film(s.integrator) ? sizeof(Rgb) : 0;
+  // The film, then the image made from it; light tracing's film also holds a splat sum per pixel.
+  const uint64_t splats = s.integrator == IntegratorKind::Lt ? sizeof(Rgb) : 0;
   return pixels * (sizeof(PixelSum) + sizeof(Rgb) + splats);
 }
 
@@ -55,14 +52,28 @@ RenderOutput render(const Scene& scene, const Camera& camera, const RenderSettin
   validate(settings, camera);  // render/render_settings.cc
   reserve_memory(render_memory_bytes(settings),
                  "the " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " image's film");
-  switch (settings.integrator) {
-    case IntegratorKind::Path: return render_path(scene, camera, settings, progress, cancel);
-    case IntegratorKind::Direct: return render_direct(scene, camera, settings, progress, cancel);
-    case IntegratorKind::Igi: return render_igi(scene, camera, settings, progress, cancel);
-    case IntegratorKind::Lt: return render_lt(scene, camera, settings, progress, cancel);
-    case IntegratorKind::Bdpt: return render_bdpt(scene, camera, settings, progress, cancel);
-  }
-  throw Error("internal: unknown integrator");
+  return render_isa::select()(scene, camera, settings, progress, cancel);
 }
+
+namespace render_isa {
+
+// Highway's AVX2 target needs AVX2, FMA, BMI1/2, F16C and LZCNT, its AVX3 target AVX-512 F/VL/DQ/BW: the flags
+// the render loop's copies are compiled with (CMakeLists.txt).
+std::vector<Variant> supported() {
+  std::vector<Variant> out{{&baseline, "baseline"}};
+  [[maybe_unused]] const int64_t targets = hwy::SupportedTargets();
+#if defined(TORTE_RENDER_ISA_AVX2) && HWY_ARCH_X86
+  if (targets & (HWY_AVX2 | HWY_AVX3)) out.push_back({&avx2, "avx2"});
+#endif
+#if defined(TORTE_RENDER_ISA_AVX512) && HWY_ARCH_X86
+  if (targets & HWY_AVX3) out.push_back({&avx512, "avx512"});
+#endif
+  return out;
+}
+
+Entry select() { return supported().back().entry; }
+const char* selected_name() { return supported().back().name; }
+
+}  // namespace render_isa
 
 }  // namespace torte
