@@ -147,6 +147,7 @@ TEST_CASE("stage profile: the table has a line per stage and per material type s
   for (int i = 0; i < kStageCount; ++i) st.stage[i] = {0.25, 3, 100};
   st.stage[int(Stage::VplPass)] = {};  // not an IGI render: no VPL lines
   st.stage[int(Stage::VplGather)] = {};
+  st.stage[int(Stage::Connect)] = {};  // nor a BDPT render
   st.stage[int(Stage::Trace)].items = 1000000;
   st.shade[int(MaterialType::Lambert)] = {0.5, 2, 40};
   st.shade[int(MaterialType::CoatedDiffuse)] = {0.25, 2, 10};
