@@ -55,51 +55,21 @@ class BdptTracer {
   }
 
  private:
-  // Light vertex 0 of every request (chosen as generate_light_rays chooses it: a light by power, then
-  // sample_emission) and the first ray leaving it.
+  // Light vertex 0 of every request and the first ray leaving it (generate_light_rays, drawing its light choice
+  // from the light subpaths' own dimensions).
   void start_light_subpaths(std::span<const SampleRequest> requests) {
-    const size_t n = requests.size();
-    PathState& ps = lpaths_;
-    ps.resize(n);
-    rays_.clear();
-    light_.clear(n);
-    for (size_t i = 0; i < n; ++i) {
-      const SampleRequest& r = requests[i];
-      ps.pixel[i] = r.pixel;
-      ps.sample[i] = r.sample;
-      ps.radiance[i] = Rgb(0);
-      ps.bsdf_pdf[i] = 0;
-      ps.depth[i] = 0;
-      ps.flags[i] = 0;
-      ps.eta_scale[i] = 1;
-      ps.footprint[i] = 0;
-      ps.beta[i] = Rgb(0);
-      ps.filter_weight[i] = 0;
-      if (scene_.lights.empty()) continue;
-      float pmf, uc;
-      const int l = scene_.light_selection.sample_discrete(
-          sampler_.get_1d(r.pixel, r.sample, kDimLightSubpathBase + bounce_dim(0, kDimLightSelect)), &pmf, &uc);
-      if (!(pmf > 0)) continue;
-      EmissionSample es;
-      if (!sample_emission(scene_, scene_.lights[size_t(l)], sampler_.get_2d(r.pixel, r.sample, kDimEmitPosition),
-                           sampler_.get_2d(r.pixel, r.sample, kDimEmitDirection), uc, &es))
-        continue;
-      const Rgb beta = es.weight / pmf;
-      const float scale = beta.max_component();
-      if (!(scale > 0) || !beta.is_finite()) continue;
-      BdptVertex v;
-      v.kind = BdptVertexKind::Light;
-      v.p = es.origin;
-      v.ng = es.normal;
-      v.light = l;
-      v.pdf_fwd = pmf * es.pdf_pos;
-      light_.push(v, uint32_t(i));
-      ps.beta[i] = beta / scale;  // Russian roulette sees a throughput that starts at 1 (stage_light.h)
-      ps.filter_weight[i] = scale;
-      ps.bsdf_pdf[i] = es.pdf_dir;
-      const Vec3f o = length_squared(es.normal) > 0 ? offset_origin(es.origin, es.normal, es.dir) : es.origin;
-      rays_.push(o, es.dir, kInfinity, uint32_t(i));
-    }
+    light_.clear(requests.size());
+    generate_light_rays(requests, scene_, sampler_, lpaths_, rays_, kDimLightSubpathBase,
+                        [&](size_t i, int l, float pmf, const EmissionSample& es) {
+                          BdptVertex v;
+                          v.kind = BdptVertexKind::Light;
+                          v.p = es.origin;
+                          v.ng = es.normal;
+                          v.light = l;
+                          v.pdf_fwd = pmf * es.pdf_pos;
+                          light_.push(v, uint32_t(i));
+                          lpaths_.bsdf_pdf[i] = es.pdf_dir;
+                        });
   }
 
   // Camera vertex 0 of every request and its camera ray (generate_camera_rays: filter and lens samples).
