@@ -3,8 +3,11 @@
 #include <tbb/global_control.h>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <memory>
+#include <vector>
 
 #include "render/render.h"
 #include "scene/builder.h"
@@ -79,6 +82,34 @@ inline Rgb tile_mean(const Image& img, int x0, int y0, int x1, int y1) {
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) sum += img.at(x, y);
   return sum * (1.0f / float((x1 - x0) * (y1 - y0)));
+}
+
+// Settings of a square render of `size` pixels at `spp` with integrator `k` (16-pixel tiles).
+inline RenderSettings integrator_settings(IntegratorKind k, int size, int spp) {
+  RenderSettings s;
+  s.width = s.height = size;
+  s.spp = spp;
+  s.integrator = k;
+  s.tile_size = 16;
+  return s;
+}
+
+// Channel-averaged means of the image's `tile` x `tile` tiles, row by row.
+inline std::vector<double> tile_means(const Image& img, int tile) {
+  std::vector<double> out;
+  for (int y0 = 0; y0 < img.height; y0 += tile)
+    for (int x0 = 0; x0 < img.width; x0 += tile) out.push_back(tile_mean(img, x0, y0, x0 + tile, y0 + tile).average());
+  return out;
+}
+
+inline double image_mean(const Image& img) { return tile_mean(img, 0, 0, img.width, img.height).average(); }
+
+// Largest relative difference of a tile mean of `a` from the same tile of `reference`.
+inline double max_tile_error(const Image& a, const Image& reference, int tile) {
+  const auto ta = tile_means(a, tile), tr = tile_means(reference, tile);
+  double worst = 0;
+  for (size_t t = 0; t < ta.size(); ++t) worst = std::max(worst, std::fabs(ta[t] - tr[t]) / tr[t]);
+  return worst;
 }
 
 // The image must not depend on the thread count (bitwise), and must depend on the seed.

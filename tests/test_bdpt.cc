@@ -26,31 +26,6 @@ bool reduced() {
   return v && std::string(v) != "0";
 }
 
-RenderSettings settings(IntegratorKind k, int size, int spp) {
-  RenderSettings s;
-  s.width = s.height = size;
-  s.spp = spp;
-  s.integrator = k;
-  s.tile_size = 16;
-  return s;
-}
-
-std::vector<double> tile_means(const Image& img, int tile) {
-  std::vector<double> out;
-  for (int y0 = 0; y0 < img.height; y0 += tile)
-    for (int x0 = 0; x0 < img.width; x0 += tile) out.push_back(tile_mean(img, x0, y0, x0 + tile, y0 + tile).average());
-  return out;
-}
-
-double mean(const Image& img) { return tile_mean(img, 0, 0, img.width, img.height).average(); }
-
-double max_tile_error(const Image& a, const Image& reference, int tile) {
-  const auto ta = tile_means(a, tile), tr = tile_means(reference, tile);
-  double worst = 0;
-  for (size_t t = 0; t < ta.size(); ++t) worst = std::max(worst, std::fabs(ta[t] - tr[t]) / tr[t]);
-  return worst;
-}
-
 double rmse(const Image& a, const Image& b) {
   double sum = 0;
   for (size_t k = 0; k < a.pixels.size(); ++k) {
@@ -63,7 +38,7 @@ double rmse(const Image& a, const Image& b) {
 // The reference: path tracing of the Cornell-like box, 64x64 at 4096 spp (16x16 tile means to about 0.1 %).
 const Image& path_reference() {
   static const Image img = [] {
-    RenderSettings p = settings(IntegratorKind::Path, 64, reduced() ? 512 : 4096);
+    RenderSettings p = integrator_settings(IntegratorKind::Path, 64, reduced() ? 512 : 4096);
     p.seed = 7;
     return render_view(*cornell_like(), box_camera(), p).image;
   }();
@@ -75,12 +50,12 @@ const Image& path_reference() {
 TEST_CASE("bdpt converges to path on the Cornell-like box (16x16 tile means of a 64x64 image)", "[render][bdpt]") {
   const Image& path = path_reference();
   const RenderOutput bdpt =
-      render_view(*cornell_like(), box_camera(), settings(IntegratorKind::Bdpt, 64, reduced() ? 64 : 512));
-  INFO("bdpt mean " << mean(bdpt.image) << ", path mean " << mean(path) << ", worst tile "
+      render_view(*cornell_like(), box_camera(), integrator_settings(IntegratorKind::Bdpt, 64, reduced() ? 64 : 512));
+  INFO("bdpt mean " << image_mean(bdpt.image) << ", path mean " << image_mean(path) << ", worst tile "
                     << max_tile_error(bdpt.image, path, 16));
   // Measured (seed 0, 512 spp): mean -0.43 %, worst tile 1.16 %; the mean sits about 0.4 % low at any spp (a
   // bias not yet found, growing with path length: -0.1 % at max_depth 2, -0.3 % at 5, -0.5 % at 64).
-  CHECK(mean(bdpt.image) == Approx(mean(path)).epsilon(reduced() ? 0.02 : 0.007));
+  CHECK(image_mean(bdpt.image) == Approx(image_mean(path)).epsilon(reduced() ? 0.02 : 0.007));
   CHECK(max_tile_error(bdpt.image, path, 16) < (reduced() ? 0.04 : 0.015));
   CHECK(bdpt.stats.shadow_rays > 0);
   CHECK(bdpt.stats.dropped_samples == 0);
@@ -89,8 +64,8 @@ TEST_CASE("bdpt converges to path on the Cornell-like box (16x16 tile means of a
 TEST_CASE("bdpt error against the reference falls with the sample count", "[render][bdpt]") {
   const Image& path = path_reference();
   const auto scene = cornell_like();
-  const double e4 = rmse(render_view(*scene, box_camera(), settings(IntegratorKind::Bdpt, 64, 4)).image, path);
-  const double e64 = rmse(render_view(*scene, box_camera(), settings(IntegratorKind::Bdpt, 64, 64)).image, path);
+  const double e4 = rmse(render_view(*scene, box_camera(), integrator_settings(IntegratorKind::Bdpt, 64, 4)).image, path);
+  const double e64 = rmse(render_view(*scene, box_camera(), integrator_settings(IntegratorKind::Bdpt, 64, 64)).image, path);
   INFO("rmse at 4 spp " << e4 << ", at 64 spp " << e64);
   // Monte Carlo error falls as 1/sqrt(spp): 4x less at 16x the samples; the reference's own noise limits it.
   CHECK(e64 < 0.4 * e4);
@@ -99,12 +74,12 @@ TEST_CASE("bdpt error against the reference falls with the sample count", "[rend
 TEST_CASE("bdpt equals path at max_depth 0, 1 and 2", "[render][bdpt]") {
   const auto scene = cornell_like();
   for (const int depth : {0, 1, 2}) {
-    RenderSettings p = settings(IntegratorKind::Path, 32, 512), b = settings(IntegratorKind::Bdpt, 32, 128);
+    RenderSettings p = integrator_settings(IntegratorKind::Path, 32, 512), b = integrator_settings(IntegratorKind::Bdpt, 32, 128);
     p.max_depth = b.max_depth = depth;
     const Image path = render_view(*scene, box_camera(), p).image, bdpt = render_view(*scene, box_camera(), b).image;
-    INFO("depth " << depth << ": bdpt " << mean(bdpt) << ", path " << mean(path) << ", worst tile "
+    INFO("depth " << depth << ": bdpt " << image_mean(bdpt) << ", path " << image_mean(path) << ", worst tile "
                   << max_tile_error(bdpt, path, 16));
-    CHECK(mean(bdpt) == Approx(mean(path)).epsilon(0.01));
+    CHECK(image_mean(bdpt) == Approx(image_mean(path)).epsilon(0.01));
     if (depth > 0) CHECK(max_tile_error(bdpt, path, 16) < 0.03);
   }
 }
@@ -117,12 +92,12 @@ TEST_CASE("bdpt furnace: inside a closed emitting Lambert sphere, depth k sees 1
   b.add_shape(shell);
   const auto scene = b.flatten();
   for (const int depth : {1, 4}) {
-    RenderSettings s = settings(IntegratorKind::Bdpt, 32, 32);
+    RenderSettings s = integrator_settings(IntegratorKind::Bdpt, 32, 32);
     s.max_depth = depth;
     s.rr_depth = 100;
     const Image img = render_view(*scene, camera_at({0.2f, -0.1f, 0.3f}, {0, 0, 1}, 60), s).image;
     INFO("depth " << depth);
-    CHECK(mean(img) == Approx(1 - std::pow(0.8, depth + 1)).epsilon(0.01));
+    CHECK(image_mean(img) == Approx(1 - std::pow(0.8, depth + 1)).epsilon(0.01));
   }
 }
 
@@ -130,7 +105,7 @@ TEST_CASE("bdpt: the MIS-weighted strategies summed equal the full estimate", "[
   // The material room: Lambert, Oren-Nayar, mirror, conductor, glass, thin glass and coated spheres, a
   // spherical lamp, a ceiling panel and a point light; every strategy of paths up to 3 scattering events.
   const auto scene = material_room();
-  RenderSettings s = settings(IntegratorKind::Bdpt, 24, 8);
+  RenderSettings s = integrator_settings(IntegratorKind::Bdpt, 24, 8);
   s.max_depth = 3;
   const Camera cam(material_room_camera(), s.width, s.height);
   BdptSettings full = BdptSettings::from(s);
@@ -195,29 +170,29 @@ TEST_CASE("bdpt with mirror and glass: equals path under area lights, lt under a
   cam.fov_degrees = 60;
   {
     const auto scene = scene_with(false, true);
-    const Image path = render_view(*scene, cam, settings(IntegratorKind::Path, 32, 1024)).image;
-    const Image bdpt = render_view(*scene, cam, settings(IntegratorKind::Bdpt, 32, 256)).image;
-    INFO("area light: bdpt " << mean(bdpt) << ", path " << mean(path) << ", worst tile "
+    const Image path = render_view(*scene, cam, integrator_settings(IntegratorKind::Path, 32, 1024)).image;
+    const Image bdpt = render_view(*scene, cam, integrator_settings(IntegratorKind::Bdpt, 32, 256)).image;
+    INFO("area light: bdpt " << image_mean(bdpt) << ", path " << image_mean(path) << ", worst tile "
                              << max_tile_error(bdpt, path, 16));
-    CHECK(mean(bdpt) == Approx(mean(path)).epsilon(0.01));
+    CHECK(image_mean(bdpt) == Approx(image_mean(path)).epsilon(0.01));
     CHECK(max_tile_error(bdpt, path, 16) < 0.03);
   }
   {
     const auto scene = scene_with(true, false);
-    const Image lt = render_view(*scene, cam, settings(IntegratorKind::Lt, 32, 512)).image;
-    const Image bdpt = render_view(*scene, cam, settings(IntegratorKind::Bdpt, 32, 256)).image;
-    const Image path = render_view(*scene, cam, settings(IntegratorKind::Path, 32, 256)).image;
-    INFO("point light: bdpt " << mean(bdpt) << ", lt " << mean(lt) << ", path " << mean(path) << ", worst tile "
+    const Image lt = render_view(*scene, cam, integrator_settings(IntegratorKind::Lt, 32, 512)).image;
+    const Image bdpt = render_view(*scene, cam, integrator_settings(IntegratorKind::Bdpt, 32, 256)).image;
+    const Image path = render_view(*scene, cam, integrator_settings(IntegratorKind::Path, 32, 256)).image;
+    INFO("point light: bdpt " << image_mean(bdpt) << ", lt " << image_mean(lt) << ", path " << image_mean(path) << ", worst tile "
                               << max_tile_error(bdpt, lt, 16));
-    CHECK(mean(bdpt) == Approx(mean(lt)).epsilon(0.01));
+    CHECK(image_mean(bdpt) == Approx(image_mean(lt)).epsilon(0.01));
     CHECK(max_tile_error(bdpt, lt, 16) < 0.03);
     // Path misses the point light's caustics (measured: 1.0 % of the image mean): the check can fail.
-    CHECK(mean(path) < 0.995 * mean(bdpt));
+    CHECK(image_mean(path) < 0.995 * image_mean(bdpt));
   }
 }
 
 TEST_CASE("bdpt gives a bitwise identical image at 1 and 2 threads", "[render][bdpt][determinism]") {
-  RenderSettings s = settings(IntegratorKind::Bdpt, 40, 4);
+  RenderSettings s = integrator_settings(IntegratorKind::Bdpt, 40, 4);
   s.height = 24;
   s.tile_size = 8;
   s.filter = Filter::mitchell();
@@ -232,7 +207,7 @@ TEST_CASE("bdpt refuses lights at infinity and orthographic cameras", "[render][
   sky.radiance = Rgb(1);
   b.add_light(sky);
   const auto scene = b.flatten();
-  RenderSettings s = settings(IntegratorKind::Bdpt, 8, 1);
+  RenderSettings s = integrator_settings(IntegratorKind::Bdpt, 8, 1);
   CHECK_THROWS_WITH(render_view(*scene, camera_at({0, 0, -4}, {0, 0, 0}, 40), s),
                     Catch::Contains("integrator 'bdpt'") && Catch::Contains("infinite"));
   CHECK_THROWS_WITH(render_view(*cornell_like(), furnace_camera(), s),

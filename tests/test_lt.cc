@@ -15,44 +15,15 @@
 using namespace torte;
 using namespace torte::test;
 
-namespace {
-
-RenderSettings settings(IntegratorKind k, int size, int spp) {
-  RenderSettings s;
-  s.width = s.height = size;
-  s.spp = spp;
-  s.integrator = k;
-  s.tile_size = 16;
-  return s;
-}
-
-std::vector<double> tile_means(const Image& img, int tile) {
-  std::vector<double> out;
-  for (int y0 = 0; y0 < img.height; y0 += tile)
-    for (int x0 = 0; x0 < img.width; x0 += tile) out.push_back(tile_mean(img, x0, y0, x0 + tile, y0 + tile).average());
-  return out;
-}
-
-double mean(const Image& img) { return tile_mean(img, 0, 0, img.width, img.height).average(); }
-
-double max_tile_error(const Image& a, const Image& reference, int tile) {
-  const auto ta = tile_means(a, tile), tr = tile_means(reference, tile);
-  double worst = 0;
-  for (size_t t = 0; t < ta.size(); ++t) worst = std::max(worst, std::fabs(ta[t] - tr[t]) / tr[t]);
-  return worst;
-}
-
-}  // namespace
-
 TEST_CASE("lt converges to path on the Cornell-like box (16x16 tile means of a 64x64 image)", "[render][lt]") {
   const auto scene = cornell_like();
-  RenderSettings p = settings(IntegratorKind::Path, 64, 256);
+  RenderSettings p = integrator_settings(IntegratorKind::Path, 64, 256);
   p.seed = 1;
   const Image path = render_view(*scene, box_camera(), p).image;
-  const RenderOutput lt = render_view(*scene, box_camera(), settings(IntegratorKind::Lt, 64, 128));
-  INFO("lt mean " << mean(lt.image) << ", path mean " << mean(path) << ", worst tile "
+  const RenderOutput lt = render_view(*scene, box_camera(), integrator_settings(IntegratorKind::Lt, 64, 128));
+  INFO("lt mean " << image_mean(lt.image) << ", path mean " << image_mean(path) << ", worst tile "
                   << max_tile_error(lt.image, path, 16));
-  CHECK(mean(lt.image) == Approx(mean(path)).epsilon(0.01));
+  CHECK(image_mean(lt.image) == Approx(image_mean(path)).epsilon(0.01));
   // Measured over seeds: tile errors of about 1 % (one standard deviation) at 64 light paths per pixel.
   CHECK(max_tile_error(lt.image, path, 16) < 0.03);
   CHECK(lt.stats.samples_done == 64u * 64u * 128u);
@@ -63,25 +34,25 @@ TEST_CASE("lt converges to path on the Cornell-like box (16x16 tile means of a 6
 TEST_CASE("lt equals path at max_depth 0, 1 and 2, and with a thin lens", "[render][lt]") {
   const auto scene = cornell_like();
   for (const int depth : {0, 1, 2}) {
-    RenderSettings p = settings(IntegratorKind::Path, 32, 256), l = settings(IntegratorKind::Lt, 32, 64);
+    RenderSettings p = integrator_settings(IntegratorKind::Path, 32, 256), l = integrator_settings(IntegratorKind::Lt, 32, 64);
     p.max_depth = l.max_depth = depth;
     const Image path = render_view(*scene, box_camera(), p).image, lt = render_view(*scene, box_camera(), l).image;
-    INFO("depth " << depth << ": lt " << mean(lt) << ", path " << mean(path) << ", worst tile "
+    INFO("depth " << depth << ": lt " << image_mean(lt) << ", path " << image_mean(path) << ", worst tile "
                   << max_tile_error(lt, path, 16));
     if (depth == 0) {
       CHECK(lt.pixels == path.pixels);  // emitters seen directly: the same camera pass
     } else {
-      CHECK(mean(lt) == Approx(mean(path)).epsilon(0.015));
+      CHECK(image_mean(lt) == Approx(image_mean(path)).epsilon(0.015));
       CHECK(max_tile_error(lt, path, 16) < 0.04);
     }
   }
   CameraDesc lens = box_camera();
   lens.aperture_radius = 0.05f;
   lens.focus_distance = 1.2f;
-  const Image path = render_view(*scene, lens, settings(IntegratorKind::Path, 32, 256)).image;
-  const Image lt = render_view(*scene, lens, settings(IntegratorKind::Lt, 32, 64)).image;
-  INFO("thin lens: lt " << mean(lt) << ", path " << mean(path) << ", worst tile " << max_tile_error(lt, path, 16));
-  CHECK(mean(lt) == Approx(mean(path)).epsilon(0.015));
+  const Image path = render_view(*scene, lens, integrator_settings(IntegratorKind::Path, 32, 256)).image;
+  const Image lt = render_view(*scene, lens, integrator_settings(IntegratorKind::Lt, 32, 64)).image;
+  INFO("thin lens: lt " << image_mean(lt) << ", path " << image_mean(path) << ", worst tile " << max_tile_error(lt, path, 16));
+  CHECK(image_mean(lt) == Approx(image_mean(path)).epsilon(0.015));
   CHECK(max_tile_error(lt, path, 16) < 0.04);
 }
 
@@ -97,7 +68,7 @@ TEST_CASE("lt furnace: a Lambert sphere under a uniform sky, orthographic camera
     CameraDesc cam = furnace_camera();
     cam.aperture_radius = aperture;
     cam.focus_distance = 5;
-    const Image img = render_view(*scene, cam, settings(IntegratorKind::Lt, 32, 64)).image;
+    const Image img = render_view(*scene, cam, integrator_settings(IntegratorKind::Lt, 32, 64)).image;
     INFO("aperture " << aperture);
     CHECK(furnace_sphere_mean_green(img) == Approx(0.6).epsilon(0.02));
     if (aperture == 0) CHECK(img.at(0, 0).g == Approx(1.0f).epsilon(1e-5));  // the sky, from the camera pass
@@ -112,18 +83,18 @@ TEST_CASE("lt furnace: inside a closed emitting Lambert sphere, depth k sees 1 -
   b.add_shape(shell);
   const auto scene = b.flatten();
   for (const int depth : {1, 4}) {
-    RenderSettings s = settings(IntegratorKind::Lt, 32, 64);
+    RenderSettings s = integrator_settings(IntegratorKind::Lt, 32, 64);
     s.max_depth = depth;
     s.rr_depth = 100;
     const Image img = render_view(*scene, camera_at({0.2f, -0.1f, 0.3f}, {0, 0, 1}, 60), s).image;
     INFO("depth " << depth);
-    CHECK(mean(img) == Approx(1 - std::pow(0.8, depth + 1)).epsilon(0.01));
+    CHECK(image_mean(img) == Approx(1 - std::pow(0.8, depth + 1)).epsilon(0.01));
   }
 }
 
 TEST_CASE("lt gives a bitwise identical image at 1 and 2 threads", "[render][lt][determinism]") {
   const auto scene = cornell_like();
-  RenderSettings s = settings(IntegratorKind::Lt, 40, 4);
+  RenderSettings s = integrator_settings(IntegratorKind::Lt, 40, 4);
   s.height = 24;
   s.tile_size = 8;
   s.filter = Filter::mitchell();
@@ -134,7 +105,7 @@ TEST_CASE("lt refuses a camera it cannot connect to; the other integrators accep
   const auto scene = cornell_like();
   CameraDesc cam = box_camera();
   cam.camera_to_world = cam.camera_to_world * scale({1, 2, 1});
-  RenderSettings s = settings(IntegratorKind::Lt, 8, 1);
+  RenderSettings s = integrator_settings(IntegratorKind::Lt, 8, 1);
   CHECK_THROWS_WITH(render_view(*scene, cam, s), Catch::Contains("integrator 'lt'") && Catch::Contains("rotation"));
   s.integrator = IntegratorKind::Path;
   CHECK_NOTHROW(render_view(*scene, cam, s));
@@ -150,7 +121,7 @@ TEST_CASE("lt interrupted mid-pass keeps its splats normalised by the light path
       if (done * 3 >= total) cancel->store(true);
     }
   };
-  const RenderSettings s = settings(IntegratorKind::Lt, 32, 64);
+  const RenderSettings s = integrator_settings(IntegratorKind::Lt, 32, 64);
   std::atomic<bool> cancel{false};
   CancelAt sink(&cancel);
   const RenderOutput part = render(*scene, Camera(box_camera(), s.width, s.height), s, &sink, &cancel);
@@ -158,8 +129,8 @@ TEST_CASE("lt interrupted mid-pass keeps its splats normalised by the light path
   CHECK(part.stats.interrupted);
   CHECK(part.stats.samples_done < uint64_t(32 * 32 * 64));
   CHECK(part.stats.samples_done % uint64_t(16 * 16) == 0);  // whole tiles only
-  INFO("interrupted mean " << mean(part.image) << ", full " << mean(full.image));
-  CHECK(mean(part.image) == Approx(mean(full.image)).epsilon(0.03));
+  INFO("interrupted mean " << image_mean(part.image) << ", full " << image_mean(full.image));
+  CHECK(image_mean(part.image) == Approx(image_mean(full.image)).epsilon(0.03));
 }
 
 TEST_CASE("lt: shading normals get the adjoint correction (a coarse smooth-shaded sphere under a sky)", "[render][lt]") {
@@ -194,8 +165,8 @@ TEST_CASE("lt: shading normals get the adjoint correction (a coarse smooth-shade
   b.add_light(sky);
   const auto scene = b.flatten();
   CameraDesc cam = camera_at({0.5f, 2, -4}, {0, 0, 0}, 35);
-  const Image path = render_view(*scene, cam, settings(IntegratorKind::Path, 32, 256)).image;
-  const Image lt = render_view(*scene, cam, settings(IntegratorKind::Lt, 32, 256)).image;
+  const Image path = render_view(*scene, cam, integrator_settings(IntegratorKind::Path, 32, 256)).image;
+  const Image lt = render_view(*scene, cam, integrator_settings(IntegratorKind::Lt, 32, 256)).image;
   // The sphere's pixels only (the sky, at exactly 1, comes from the same camera pass in both).
   double sum_lt = 0, sum_path = 0;
   int n = 0;

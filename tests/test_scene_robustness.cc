@@ -55,12 +55,6 @@ double worst_tile_difference(const Image& a, const Image& b) {
   return worst;
 }
 
-double image_mean(const Image& img) {
-  double sum = 0;
-  for (const Rgb& c : img.pixels) sum += c.average();
-  return sum / double(img.pixels.size());
-}
-
 FloatInput constant_input(float v) { return {v, nullptr}; }
 
 }  // namespace
