@@ -5,6 +5,7 @@
 //   local big = m:subdivide{levels = 2, displacement = 0.05, seed = 0}   -- or torte.mesh.subdivide(m, {...})
 //   print(big.triangles, big.vertices, big.has_normals, big.has_uvs)
 //   local lo, hi = big:bounds()                       -- {x, y, z}, {x, y, z}
+//   big:save("big.ply")                               -- binary little-endian PLY, read back by torte.mesh.load
 //   scene:add(torte.shape.mesh{mesh = big, material = ...})   -- or file = "bunny.ply"
 #include <chrono>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "file_access.h"
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_normals.h"
+#include "geometry/ply.h"
 #include "geometry/subdivide.h"
 #include "types.h"
 
@@ -94,6 +96,22 @@ int mesh_bounds(lua_State* L) {
   return 2;
 }
 
+// mesh:save(path): binary little-endian PLY (geometry/ply.h); only .ply is written.
+int mesh_save(lua_State* L) {
+  auto mesh = check_mesh(L, 1, "torte.mesh.save");
+  if (lua_type(L, 2) != LUA_TSTRING) throw Error("torte.mesh.save expects a file name, got " + type_name(L, 2));
+  const std::string path = lua_tostring(L, 2);
+  if (path.size() < 4 || path.compare(path.size() - 4, 4, ".ply") != 0)
+    throw Error("torte.mesh.save: '" + path + "' must end in .ply (the only format it writes)");
+  check_write(L, path, "torte.mesh.save");
+  try {
+    write_ply(*mesh, path);
+  } catch (const Error& e) {
+    throw Error(std::string("torte.mesh.save: ") + e.what());
+  }
+  return 0;
+}
+
 int mesh_index(lua_State* L) {
   auto mesh = check_mesh(L, 1, "mesh field");
   const std::string key = luaL_checkstring(L, 2);
@@ -111,9 +129,11 @@ int mesh_index(lua_State* L) {
     lua_pushcfunction(L, guarded<mesh_smooth_normals>);
   } else if (key == "bounds") {
     lua_pushcfunction(L, guarded<mesh_bounds>);
+  } else if (key == "save") {
+    lua_pushcfunction(L, guarded<mesh_save>);
   } else {
     throw Error("torte.mesh has no field '" + key +
-                "' (fields: triangles, vertices, has_normals, has_uvs; methods: subdivide, smooth_normals, bounds)");
+                "' (fields: triangles, vertices, has_normals, has_uvs; methods: subdivide, smooth_normals, bounds, save)");
   }
   return 1;
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <mutex>
 #include <thread>
+#include <unordered_set>
 
 #include "core/interrupt.h"
 #include "core/memory_budget.h"
@@ -234,6 +235,22 @@ void print_scene_summary(const Scene& scene) {
   if (patches > 0) std::fprintf(stderr, " (%zu emitting voxel patches)", patches);
   std::fprintf(stderr, "; memory: geometry %.1f MB, acceleration %.1f MB\n", double(scene.geometry_bytes()) * 1e-6,
                double(scene.accel_bytes()) * 1e-6);
+  // Bytes per triangle of the top-level triangles by part; mesh triples and normals count each source once.
+  const double tris = scene.triangle_count();
+  if (tris > 0) {
+    const ShapeSet::TriangleMemory m = scene.accel().root().triangle_memory();
+    size_t indices = 0, normals = 0;
+    std::unordered_set<const void*> seen;
+    for (const TriangleMesh& mesh : scene.meshes) {
+      normals += mesh.nx.size() * 3 * sizeof(float);
+      if (seen.insert(&mesh.triple_array()).second) indices += mesh.triple_array().size() * sizeof(uint32_t);
+    }
+    std::fprintf(stderr,
+                 "memory per triangle: nodes %.1f B, leaves %.1f B, indices %.1f B (+ %.1f B map), normals %.1f B; "
+                 "peak resident %s\n",
+                 double(m.nodes) / tris, double(m.leaves) / tris, double(indices) / tris, double(m.index_map) / tris,
+                 double(normals) / tris, format_bytes(peak_resident_memory()).c_str());
+  }
 }
 
 int l_render(lua_State* L) {

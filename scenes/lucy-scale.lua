@@ -5,6 +5,7 @@
 --   torte scenes/lucy-scale.lua [levels=4] [displacement=0.05] [companions=true] [mesh=<hero .ply/.obj>]
 --                               [data=<meshes directory>] [width=800] [height=600] [spp=16] [max_depth=5]
 --                               [integrator=path|direct|lt] [output=out/lucy-scale.exr]
+--                               [save_ply=<directory>] [ply_dir=<directory>]
 --
 -- Triangles: the hero is subdivided `levels` times (x4 each), the companions max(levels - 2, 0) times.
 --   levels=4 (default): Lucy 99,970 x 256 = 25,592,320 + dragon 100,000 x 16 = 1,600,000
@@ -13,6 +14,8 @@
 --   levels=0: the scans as they are, 269,421 triangles, for quick tests.
 -- The models come from ../shared/data/meshes (relative to the repository root); `data` overrides the
 -- directory, `mesh` the hero model (relative paths are relative to the current directory).
+-- `save_ply` writes every grown model to <directory>/<model>.ply (mesh:save); `ply_dir` loads them from there
+-- instead of growing them (scripts/bench-lucy-ply.sh measures that path's memory).
 local torte = require "torte"
 
 -- This script's directory, so the default data path works from any current directory.
@@ -21,7 +24,7 @@ local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
 local opt = torte.options{
   levels = 4, displacement = 0.05, companions = true, mesh = "", data = script_dir .. "/../../shared/data/meshes",
   width = 800, height = 600, spp = 16, max_depth = 5, integrator = "path", output = "out/lucy-scale.exr",
-  seed = 0,
+  seed = 0, save_ply = "", ply_dir = "",
 }
 if opt.levels < 0 or opt.levels ~= math.floor(opt.levels) then
   error(("argument 'levels' must be a non-negative integer, got %s"):format(opt.levels))
@@ -33,12 +36,15 @@ local total_triangles = 0
 -- Loads and subdivides one model; returns the mesh and a transform that stands it on the floor (y = 0) with
 -- its footprint centred on (x, z), scaled to `height`, turned by `yaw` degrees.
 local function place(path, levels, height, x, z, yaw)
+  local name = path:match("[^/\\]*$"):gsub("%.%w+$", "")
+  if opt.ply_dir ~= "" then path, levels = opt.ply_dir .. "/" .. name .. ".ply", 0 end
   local t0 = torte.clock()
   local base = torte.mesh.load(path)
   local t1 = torte.clock()
   local mesh = levels > 0 and base:subdivide{levels = levels, displacement = opt.displacement, seed = opt.seed}
                or base
   local t2 = torte.clock()
+  if opt.save_ply ~= "" then mesh:save(opt.save_ply .. "/" .. name .. ".ply") end
   print(("%s: %d triangles loaded in %.3f s; %d levels -> %d triangles, %d vertices in %.2f s"):format(
     path:match("[^/\\]*$"), base.triangles, t1 - t0, levels, mesh.triangles, mesh.vertices, t2 - t1))
   total_triangles = total_triangles + mesh.triangles

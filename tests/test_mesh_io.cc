@@ -527,3 +527,53 @@ TEST_CASE("smooth normals: flat polygons keep the face normal, a closed octahedr
     CHECK(dot(n, p) == Approx(1.0f).epsilon(1e-5));
   }
 }
+
+// Issue 25: mesh:save writes binary PLY that reads back to the same values, bit for bit.
+TEST_CASE("PLY: write_ply round-trips positions, normals, uvs and triples exactly", "[mesh_io][ply_write]") {
+  TempDir dir("ply_write");
+  TriangleMesh m;
+  const float coords[5][3] = {{0, 0, 0}, {1.5f, -2.25f, 3e-7f}, {-1e6f, 0.1f, 7}, {0.3f, 0.7f, -0.9f}, {2, 2, 2}};
+  const float normals[5][3] = {{0, 0, 1}, {1, 0, 0}, {0, -1, 0}, {0, 0, -1}, {0, 1, 0}};
+  for (int i = 0; i < 5; ++i) {
+    m.add_vertex({coords[i][0], coords[i][1], coords[i][2]});
+    m.nx.push_back(normals[i][0]), m.ny.push_back(normals[i][1]), m.nz.push_back(normals[i][2]);
+    m.u.push_back(0.125f * float(i)), m.v.push_back(1 - 0.3f * float(i));
+  }
+  m.add_triangle(0, 1, 2);
+  m.add_triangle(2, 3, 4);
+  m.add_triangle(4, 1, 0);
+  const std::string path = (dir.path / "out.ply").string();
+  write_ply(m, path);
+  const TriangleMesh r = read_ply(path);
+  CHECK(r.x == m.x);
+  CHECK(r.y == m.y);
+  CHECK(r.z == m.z);
+  CHECK(r.nx == m.nx);
+  CHECK(r.ny == m.ny);
+  CHECK(r.nz == m.nz);
+  CHECK(r.u == m.u);
+  CHECK(r.v == m.v);
+  CHECK(r.indices == m.indices);
+  // Without normals and uvs the file has none either.
+  TriangleMesh bare;
+  bare.x = m.x, bare.y = m.y, bare.z = m.z, bare.indices = m.indices;
+  write_ply(bare, path);
+  const TriangleMesh rb = read_ply(path);
+  CHECK(!rb.has_normals());
+  CHECK(!rb.has_uvs());
+  CHECK(rb.x == bare.x);
+  CHECK(rb.indices == bare.indices);
+}
+
+TEST_CASE("PLY: write_ply to an unwritable path is one error naming the path", "[mesh_io][ply_write]") {
+  TriangleMesh m = make_cube();
+  const std::string msg = error_of([&] { write_ply(m, "/nonexistent-torte-dir/out.ply"); });
+  CHECK(msg.starts_with("/nonexistent-torte-dir/out.ply: cannot be written ("));
+  CHECK(msg.find('\n') == std::string::npos);
+  TempDir dir("ply_write_dir");
+  // A directory where the file should go: the temporary file is written, the rename fails, nothing is left.
+  fs::create_directories(dir.path / "taken.ply");
+  const std::string msg2 = error_of([&] { write_ply(m, (dir.path / "taken.ply").string()); });
+  CHECK(msg2.find("cannot be written") != std::string::npos);
+  CHECK(!fs::exists(dir.path / "taken.ply.tmp"));
+}

@@ -476,35 +476,38 @@ void for_chunks(size_t n, bool parallel, F&& f) {
   }
 }
 
-// Primitive references of the valid (non-empty, non-NaN) primitives in input order, and their bounds.
-HugePageVector<PrimRef> make_refs(std::span<const Bounds3f> prims, bool parallel, RangeBounds* root) {
+// Primitive references of the valid (non-empty, non-NaN) primitives in input order, and their bounds. Each
+// chunk's bounds are computed once, into a chunk-sized buffer, and its valid references written at the chunk's
+// own offset; only when some primitive is left out are the chunks moved down over the gaps.
+HugePageVector<PrimRef> make_refs(size_t count, const PrimBoundsFn& bounds, bool parallel, RangeBounds* root) {
   auto valid = [](const Bounds3f& b) { return b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z; };
-  const size_t chunks = (prims.size() + kGrain - 1) / kGrain;
-  std::vector<size_t> offset(chunks + 1, 0), first_infinite(chunks, SIZE_MAX);
-  for_chunks(prims.size(), parallel, [&](size_t c, size_t b, size_t e) {
+  const size_t chunks = (count + kGrain - 1) / kGrain;
+  std::vector<size_t> kept(chunks, 0), first_infinite(chunks, SIZE_MAX);
+  std::vector<RangeBounds> chunk_bounds(chunks);
+  HugePageVector<PrimRef> refs = make_huge_page_vector<PrimRef>(count);
+  for_chunks(count, parallel, [&](size_t c, size_t b, size_t e) {
+    std::unique_ptr<Bounds3f[]> box(new Bounds3f[e - b]);
+    bounds(b, e, box.get());
+    size_t out = b;
     for (size_t i = b; i < e; ++i) {
-      if (!valid(prims[i])) continue;
-      ++offset[c + 1];
+      const Bounds3f& pb = box[i - b];
+      if (!valid(pb)) continue;
       // Infinite bounds would poison the centroids and the SAH.
-      if (first_infinite[c] == SIZE_MAX && !(is_finite(prims[i].lo) && is_finite(prims[i].hi))) first_infinite[c] = i;
+      if (first_infinite[c] == SIZE_MAX && !(is_finite(pb.lo) && is_finite(pb.hi))) first_infinite[c] = i;
+      refs[out] = PrimRef::make(pb, uint32_t(i));
+      chunk_bounds[c].extend(refs[out++]);
     }
+    kept[c] = out - b;
   });
+  size_t total = 0;
   for (size_t c = 0; c < chunks; ++c) {
     if (first_infinite[c] != SIZE_MAX)
       throw Error("BVH build: primitive " + std::to_string(first_infinite[c]) +
                   " has infinite bounds; only finite shapes can be placed in the scene.");
-    offset[c + 1] += offset[c];
+    if (total != c * kGrain) std::copy_n(refs.begin() + c * kGrain, kept[c], refs.begin() + total);
+    total += kept[c];
   }
-  HugePageVector<PrimRef> refs = make_huge_page_vector<PrimRef>(offset[chunks]);
-  std::vector<RangeBounds> chunk_bounds(chunks);
-  for_chunks(prims.size(), parallel, [&](size_t c, size_t b, size_t e) {
-    size_t out = offset[c];
-    for (size_t i = b; i < e; ++i) {
-      if (!valid(prims[i])) continue;
-      refs[out] = PrimRef::make(prims[i], uint32_t(i));
-      chunk_bounds[c].extend(refs[out++]);
-    }
-  });
+  refs.resize(total);
   for (const RangeBounds& cb : chunk_bounds) root->extend(cb);
   return refs;
 }
@@ -512,17 +515,22 @@ HugePageVector<PrimRef> make_refs(std::span<const Bounds3f> prims, bool parallel
 }  // namespace
 
 BinaryBvh build_binary_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options) {
+  return build_binary_bvh(
+      prim_bounds.size(), [&](size_t b, size_t e, Bounds3f* out) { std::copy(&prim_bounds[b], &prim_bounds[0] + e, out); },
+      options);
+}
+
+BinaryBvh build_binary_bvh(size_t n_prims, const PrimBoundsFn& bounds, const BvhBuildOptions& options) {
   check_options(options);
   // Leaf child references carry the first primitive below kLeafFlag.
-  if (prim_bounds.size() >= size_t(kLeafFlag)) throw Error("BVH build: too many primitives (2^31 at most).");
-  // The builder's peak, before any of it is allocated: the references, the 2n - 1 node scratch, and the nodes
-  // and primitive order copied out of it.
-  const uint64_t n_prims = prim_bounds.size();
-  reserve_memory(n_prims * (sizeof(PrimRef) + 4 * sizeof(BinaryBvhNode) + sizeof(uint32_t)),
+  if (n_prims >= size_t(kLeafFlag)) throw Error("BVH build: too many primitives (2^31 at most).");
+  // The builder's peak, before any of it is allocated: the references and the node scratch (2n - 1 at most,
+  // about n / 4 written), then the primitive order.
+  reserve_memory(n_prims * (sizeof(PrimRef) + sizeof(BinaryBvhNode) + sizeof(uint32_t)),
                  "BVH build of " + std::to_string(n_prims) + " primitives");
   BinaryBvh bvh;
   RangeBounds root;
-  HugePageVector<PrimRef> refs = make_refs(prim_bounds, options.parallel, &root);
+  HugePageVector<PrimRef> refs = make_refs(n_prims, bounds, options.parallel, &root);
   if (refs.empty()) return bvh;
   // The builder writes into an uninitialised buffer of the 2n - 1 bound (a vector's serial zero fill of 64 bytes
   // per primitive cost more than the copy), then the nodes used are copied out in parallel chunks.
@@ -535,15 +543,17 @@ BinaryBvh build_binary_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuild
       static_cast<BinaryBvhNode*>(huge_pages::allocate(scratch_bytes, alignof(BinaryBvhNode))), free_nodes);
   Builder builder(options, refs, scratch.get());
   builder.build(0, 0, uint32_t(refs.size()), 0, root, /*report=*/true);
+  // The primitive order first, so the references (32 B each, the build's largest buffer) are gone before the
+  // nodes are copied out of the scratch.
+  bvh.prim_indices = make_huge_page_vector<uint32_t>(refs.size());
+  for_chunks(refs.size(), options.parallel, [&](size_t, size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) bvh.prim_indices[i] = refs[i].prim();
+  });
+  free_storage(refs);
   const size_t used = builder.node_count();
   bvh.nodes = make_huge_page_vector<BinaryBvhNode>(used);
   for_chunks(used, options.parallel, [&](size_t, size_t b, size_t e) {
     std::copy(scratch.get() + b, scratch.get() + e, bvh.nodes.data() + b);
-  });
-  scratch.reset();
-  bvh.prim_indices = make_huge_page_vector<uint32_t>(refs.size());
-  for_chunks(refs.size(), options.parallel, [&](size_t, size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) bvh.prim_indices[i] = refs[i].prim();
   });
   return bvh;
 }

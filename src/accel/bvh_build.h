@@ -16,6 +16,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -100,8 +101,15 @@ constexpr int kMaxBvhDepth = 60;
 template <int N>
 constexpr int kWideStackSize = 64 * N;
 
+/// Writes the bounds of primitives [begin, end) to out[0, end - begin). Called once per primitive, on fixed
+/// chunks of the range, from several threads at once (when options.parallel).
+using PrimBoundsFn = std::function<void(size_t begin, size_t end, Bounds3f* out)>;
+
 // Throws torte::Error for out-of-range options, infinite bounds or more than 2^31 - 1 primitives.
 BinaryBvh build_binary_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options = {});
+/// Same over `count` primitives whose bounds come from `bounds`, so no array of them is held: a build's peak is
+/// its 32-byte references, the binary nodes being written and then the primitive order.
+BinaryBvh build_binary_bvh(size_t count, const PrimBoundsFn& bounds, const BvhBuildOptions& options = {});
 
 // Wide nodes in depth-first pre-order (a node precedes its subtree; its children's subtrees follow in slot
 // order), root at 0. Occupied slots come first in each node, in the binary tree's left-to-right order, so leaf
@@ -119,6 +127,8 @@ void write_wide_node(WideNode<N>& w, int k, const Bounds3f* bounds, const uint32
 
 template <int N>
 WideBvh<N> build_wide_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options = {});
+template <int N>
+WideBvh<N> build_wide_bvh(size_t count, const PrimBoundsFn& bounds, const BvhBuildOptions& options = {});
 
 // SAH cost of a leaf of `count` primitives: intersection_cost per started block of leaf_block_size.
 float leaf_sah_cost(uint32_t count, const BvhBuildOptions& options);
@@ -165,6 +175,8 @@ extern template WideBvh<4> collapse<4>(const BinaryBvh&, const BvhBuildOptions&)
 extern template WideBvh<8> collapse<8>(const BinaryBvh&, const BvhBuildOptions&);
 extern template WideBvh<4> build_wide_bvh<4>(std::span<const Bounds3f>, const BvhBuildOptions&);
 extern template WideBvh<8> build_wide_bvh<8>(std::span<const Bounds3f>, const BvhBuildOptions&);
+extern template WideBvh<4> build_wide_bvh<4>(size_t, const PrimBoundsFn&, const BvhBuildOptions&);
+extern template WideBvh<8> build_wide_bvh<8>(size_t, const PrimBoundsFn&, const BvhBuildOptions&);
 extern template float sah_cost<4>(const WideBvh<4>&, const BvhBuildOptions&);
 extern template float sah_cost<8>(const WideBvh<8>&, const BvhBuildOptions&);
 extern template BvhStats bvh_stats<4>(const WideBvh<4>&);

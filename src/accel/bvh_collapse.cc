@@ -251,6 +251,14 @@ WideBvh<N> build_wide_bvh(std::span<const Bounds3f> prim_bounds, const BvhBuildO
 }
 
 template <int N>
+WideBvh<N> build_wide_bvh(size_t count, const PrimBoundsFn& bounds, const BvhBuildOptions& options) {
+  BinaryBvh binary = build_binary_bvh(count, bounds, options);
+  WideBvh<N> wide = collapse_nodes<N>(binary, options);
+  wide.prim_indices = std::move(binary.prim_indices);
+  return wide;
+}
+
+template <int N>
 float sah_cost(const WideBvh<N>& bvh, const BvhBuildOptions& options) {
   if (bvh.nodes.empty()) return 0;
   const float root_area = bvh.bounds.surface_area();
@@ -310,6 +318,8 @@ template WideBvh<4> collapse<4>(const BinaryBvh&, const BvhBuildOptions&);
 template WideBvh<8> collapse<8>(const BinaryBvh&, const BvhBuildOptions&);
 template WideBvh<4> build_wide_bvh<4>(std::span<const Bounds3f>, const BvhBuildOptions&);
 template WideBvh<8> build_wide_bvh<8>(std::span<const Bounds3f>, const BvhBuildOptions&);
+template WideBvh<4> build_wide_bvh<4>(size_t, const PrimBoundsFn&, const BvhBuildOptions&);
+template WideBvh<8> build_wide_bvh<8>(size_t, const PrimBoundsFn&, const BvhBuildOptions&);
 template float sah_cost<4>(const WideBvh<4>&, const BvhBuildOptions&);
 template float sah_cost<8>(const WideBvh<8>&, const BvhBuildOptions&);
 template BvhStats bvh_stats<4>(const WideBvh<4>&);

@@ -55,6 +55,7 @@ class GeometrySet {
   // The ray (in this set's space, as traced) is needed for voxel hits only.
   SurfaceHit surface(const Hit& hit, const Ray* ray = nullptr) const;
   size_t accel_bytes() const;
+  ShapeSet::TriangleMemory triangle_memory() const { return shapes_.triangle_memory(); }
 
  private:
   void intersect_grids(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const;

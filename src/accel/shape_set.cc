@@ -24,31 +24,28 @@ void ShapeSet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadri
     input_triangles += mesh.triangle_count();
   }
   if (input_triangles > (size_t(1) << 31)) throw Error("more than 2^31 triangles in one scene or group");
-  // Triangles: bounds, the wide BVH, its leaf-order vertex copy (read straight from the meshes), then the meshes
-  // rewritten in leaf order. The bounds are on huge pages faulted in by all threads (core/huge_pages.h): fewer
-  // and parallel faults on big scenes.
+  // Triangles: the wide BVH over bounds computed chunk by chunk straight into the builder's references (an
+  // array of them would cost 24 B/tri at the build's peak), its leaf-order vertex copy (read from the meshes),
+  // then the owned meshes rewritten in leaf order.
   const auto report = [&](size_t units) {
     if (progress) progress->add(units);
   };
-  HugePageVector<Bounds3f> tri_bounds = make_huge_page_vector<Bounds3f>(input_triangles);
-  // Parallel over meshes and, nested, over each mesh's triangles: one big mesh would otherwise run serially.
-  parallel_for(uint32_t(0), uint32_t(meshes.size()), [&](uint32_t m) {
-    const TriangleMesh& mesh = meshes[m];
-    parallel_for_blocks(size_t(0), mesh.triangle_count(), 8192, [&](IndexRange<size_t> r) {
-      throw_if_interrupted("building the scene");  // TBB rethrows in the caller
-      for (size_t t = r.begin(); t < r.end(); ++t) tri_bounds[mesh_first[m] + t] = mesh.triangle_bounds(t);
-      report(r.size());
-    });
-  });
   BvhBuildOptions options;
   options.progress = progress;
-  tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(tri_bounds, options);
+  const auto bounds_of = [&](size_t begin, size_t end, Bounds3f* out) {
+    // A chunk may span meshes (small ones): walk them from the one holding `begin`.
+    uint32_t m = meshes.empty() ? 0 : mesh_holding(mesh_first, uint32_t(begin));
+    for (size_t g = begin; g < end; ++g) {
+      while (m + 1 < meshes.size() && g >= mesh_first[m + 1]) ++m;
+      out[g - begin] = meshes[m].triangle_bounds(g - mesh_first[m]);
+    }
+    report(end - begin);
+  };
+  tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(input_triangles, bounds_of, options);
   report(input_triangles - tri_bvh_.prim_indices.size());  // triangles the tree left out (empty bounds)
   tri_leaves_ = make_triangle_leaves(tri_bvh_, std::span<const TriangleMesh>(meshes), mesh_first);
   report(input_triangles / 2);
-  // The bounds (24 bytes per triangle, already faulted in) are the reorder's scratch.
-  static_assert(sizeof(Bounds3f) >= 12);
-  store_in_leaf_order(meshes, mesh_first, std::as_writable_bytes(std::span(tri_bounds)));
+  store_in_leaf_order(meshes, mesh_first);
   report(input_triangles - input_triangles / 2);
   std::vector<Bounds3f> quadric_bounds(quadrics.size());
   for (size_t q = 0; q < quadrics.size(); ++q) quadric_bounds[q] = world_bounds(quadrics[q]);
@@ -56,31 +53,36 @@ void ShapeSet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadri
   bounds_ = merge(tri_bvh_.bounds, quadric_bvh_.bounds());
 }
 
-// Rewrites every mesh's index triples in the order its triangles take in the leaves, then the set numbers its
-// triangles by leaf position: a hit needs no map back, and a set of one mesh needs no per-triangle table at all
-// (its triangle i is the mesh's triangle i). Triangles the tree left out (empty bounds: never hit) go last in
-// their mesh. The tree's prim_indices are dropped: the meshes now carry that order.
+// Rewrites every owned mesh's index triples in the order its triangles take in the leaves, then the set numbers
+// its triangles by leaf position: a hit needs no map back, and a set of one owned mesh needs no per-triangle
+// table at all (its triangle i is the mesh's triangle i). Triangles the tree left out (empty bounds: never hit)
+// go last in their mesh. Placed meshes (TriangleMesh::make_placed) share their triples with the script and keep
+// their order; a set with one of them, or with several meshes, keeps a table of each triangle's place in the
+// meshes concatenated (4 B/tri). The tree's prim_indices are dropped: the meshes or that table carry the order.
 //
 // Parallel over blocks of leaf positions: a triangle's index in its mesh is its rank among the mesh's triangles
 // in leaf order, so each block counts its triangles per mesh, an exclusive scan over the blocks gives every
-// block its starting rank per mesh, and a second pass writes. The reordered triples are staged in `scratch` (at
-// least 12 bytes per triangle, memory the build has already faulted in) and copied back over each mesh's own index
-// array: fresh arrays would cost a page fault per 4 KiB (1.5 s for 28 M triangles on this VM, more than the
-// reorder itself).
-void ShapeSet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first,
-                                   std::span<std::byte> scratch) {
-  const auto& order = tri_bvh_.prim_indices;  // leaf position -> input triangle
+// block its starting rank per mesh, and a second pass writes. The reordered triples are staged and copied back
+// over each mesh's own index array.
+void ShapeSet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first) {
+  auto& order = tri_bvh_.prim_indices;  // leaf position -> input triangle
   const size_t n = order.size(), mesh_count = meshes.size();
   const size_t input_triangles = mesh_first.empty() ? 0 : mesh_first.back() + meshes.back().triangle_count();
-  if (scratch.size() < 12 * input_triangles) throw Error("internal: reorder scratch too small");
   triangle_count_ = uint32_t(n);
   const bool one_mesh = mesh_count == 1;
-  tri_ref_.reset();
+  bool any_placed = false, any_owned = false;
+  for (const TriangleMesh& m : meshes) (m.placed() ? any_placed : any_owned) |= m.triangle_count() > 0;
+  free_storage(tri_ref_);
   mesh_first_.clear();
-  if (!one_mesh && n > 0) {
-    tri_ref_ = std::make_unique_for_overwrite<uint32_t[]>(n);
-    mesh_first_ = mesh_first;
+  const bool table = (!one_mesh || any_placed) && n > 0;
+  if (table) mesh_first_ = mesh_first;
+  if (!any_owned) {  // the tree's order is the table: input triangle = mesh_first[m] + its index in mesh m
+    if (table) tri_ref_ = std::move(order);
+    free_storage(order);
+    return;
   }
+  if (table) tri_ref_ = make_huge_page_vector<uint32_t>(n);
+  HugePageVector<uint32_t> scratch = make_huge_page_vector<uint32_t>(3 * input_triangles);
   const auto mesh_of = [&](uint32_t g) { return one_mesh ? 0u : mesh_holding(mesh_first, g); };
   // Blocks of at least 64 k triangles, and at most 4 M per-(block, mesh) counters.
   const size_t blocks =
@@ -100,30 +102,37 @@ void ShapeSet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std:
       rank[b * mesh_count + m] = placed[m];
       placed[m] += c;
     }
-  // Mesh m's new triples go to scratch triangles [mesh_first[m], mesh_first[m] + its count).
+  // Owned mesh m's new triples go to scratch triangles [mesh_first[m], mesh_first[m] + its count).
   const auto stage = [&](uint32_t m, size_t local, const uint32_t* t) {
-    std::memcpy(scratch.data() + 12 * (mesh_first[m] + local), t, 12);
+    std::memcpy(scratch.data() + 3 * (mesh_first[m] + local), t, 12);
   };
   parallel_for(size_t(0), blocks, [&](size_t b) {
     uint32_t* next = rank.data() + b * mesh_count;  // no element when there are no meshes
     for (size_t i = block_begin(b); i < block_begin(b + 1); ++i) {
-      const uint32_t g = order[i], m = mesh_of(g), local = next[m]++;
-      if (!one_mesh) tri_ref_[i] = mesh_first[m] + local;
-      stage(m, local, &meshes[m].indices[3 * size_t(g - mesh_first[m])]);
+      const uint32_t g = order[i], m = mesh_of(g);
+      if (meshes[m].placed()) {
+        tri_ref_[i] = g;  // keeps its order
+        continue;
+      }
+      const uint32_t local = next[m]++;
+      if (table) tri_ref_[i] = mesh_first[m] + local;
+      stage(m, local, meshes[m].triangle(g - mesh_first[m]));
     }
   });
   if (n < input_triangles) {
     std::vector<bool> in_tree(input_triangles, false);
     for (uint32_t g : order) in_tree[g] = true;
-    for (uint32_t m = 0; m < mesh_count; ++m)
+    for (uint32_t m = 0; m < mesh_count; ++m) {
+      if (meshes[m].placed()) continue;
       for (size_t t = 0, next = placed[m]; t < meshes[m].triangle_count(); ++t)
-        if (!in_tree[mesh_first[m] + t]) stage(m, next++, &meshes[m].indices[3 * t]);
+        if (!in_tree[mesh_first[m] + t]) stage(m, next++, meshes[m].triangle(t));
+    }
   }
   parallel_for(uint32_t(0), uint32_t(mesh_count), [&](uint32_t m) {
-    if (!meshes[m].indices.empty())
-      std::memcpy(meshes[m].indices.data(), scratch.data() + 12 * size_t(mesh_first[m]), 4 * meshes[m].indices.size());
+    if (!meshes[m].placed() && !meshes[m].indices.empty())
+      std::memcpy(meshes[m].indices.data(), scratch.data() + 3 * size_t(mesh_first[m]), 4 * meshes[m].indices.size());
   });
-  tri_bvh_.prim_indices = {};
+  free_storage(order);
 }
 
 bool ShapeSet::intersect_one(const Ray& ray, Hit* hit) const {
@@ -200,7 +209,7 @@ void ShapeSet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool
 size_t ShapeSet::accel_bytes() const {
   return tri_bvh_.memory_bytes() + tri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
          quadric_bvh_.prim_indices().size() * sizeof(uint32_t) +
-         (tri_ref_ ? triangle_count_ * sizeof(uint32_t) + mesh_first_.size() * sizeof(uint32_t) : 0);
+         tri_ref_.size() * sizeof(uint32_t) + mesh_first_.size() * sizeof(uint32_t);
 }
 
 SurfaceHit ShapeSet::surface(const Hit& hit, uint32_t object_base) const {
@@ -215,7 +224,7 @@ SurfaceHit ShapeSet::surface(const Hit& hit, uint32_t object_base) const {
   const TriangleMesh& mesh = (*meshes_)[ref.mesh];
   Vec3f p[3];
   tri_leaves_.triangle(hit.prim, p);
-  return triangle_surface(mesh, &mesh.indices[3 * size_t(ref.local)], p, hit.b1, hit.b2, object_base + ref.mesh);
+  return triangle_surface(mesh, mesh.triangle(ref.local), p, hit.b1, hit.b2, object_base + ref.mesh);
 }
 
 }  // namespace torte

@@ -4,8 +4,9 @@
 //
 // Memory (the dragon, one mesh with vertex normals): wide nodes 6.8 B/tri, leaf triangles 36.1 (with the leaf-start
 // bitmap), mesh indices 12 and normals 6 once the scene releases the mesh positions (the leaves hold them):
-// 61.0 B/tri, checked by test_geometry_set.cc. Sets of several meshes add 4 B/tri (each triangle's place in
-// the meshes concatenated).
+// 61.0 B/tri, checked by test_geometry_set.cc. Sets of several meshes, or of placed meshes (a scene's, which
+// share the script's arrays: TriangleMesh::make_placed), add 4 B/tri (each triangle's place in the meshes
+// concatenated) and keep only their world normals.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -57,26 +58,32 @@ class ShapeSet {
   /// `object_base`.
   SurfaceHit surface(const Hit& hit, uint32_t object_base = 0) const;
   size_t accel_bytes() const;
+  /// The triangle BVH's parts in bytes, for the render summary and memory tests.
+  struct TriangleMemory {
+    size_t nodes = 0, leaves = 0, index_map = 0;  // wide nodes; leaf vertices + leaf starts; tri_ref_ + mesh_first_
+  };
+  TriangleMemory triangle_memory() const {
+    return {tri_bvh_.nodes.size() * sizeof(tri_bvh_.nodes[0]), tri_leaves_.memory_bytes(),
+            (tri_ref_.size() + mesh_first_.size()) * sizeof(uint32_t)};
+  }
 
  private:
   void intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const;
-  void store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first,
-                           std::span<std::byte> scratch);
+  void store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first);
   const std::vector<TriangleMesh>* meshes_ = nullptr;
   const std::vector<Quadric>* quadrics_ = nullptr;
   uint32_t triangle_count_ = 0;
-  // Sets of several meshes only (null for one mesh): triangle (leaf position) -> its place in the meshes
-  // concatenated, mesh_first_[m] + its index in mesh m (4 B/tri; the mesh is found by a binary search over
-  // mesh_first_, which costs less per hit than 4 more bytes per triangle cost the scene).
-  // Not a std::vector: nothing reads it before the build writes every entry, and zero-filling 28 M entries first
-  // costs a second of page faults on a VM.
-  std::unique_ptr<uint32_t[]> tri_ref_;
+  // Sets of several meshes or with a placed mesh only (empty for one owned mesh): triangle (leaf position) -> its
+  // place in the meshes concatenated, mesh_first_[m] + its index in mesh m (4 B/tri; the mesh is found by a
+  // binary search over mesh_first_, which costs less per hit than 4 more bytes per triangle cost the scene).
+  // Often the tree's own prim_indices, moved here.
+  HugePageVector<uint32_t> tri_ref_;
   std::vector<uint32_t> mesh_first_;  // first triangle of each mesh in the concatenation (several meshes only)
   struct TriangleRef {
     uint32_t mesh, local;
   };
   TriangleRef triangle_ref(uint32_t prim) const {
-    if (!tri_ref_) return {0, prim};
+    if (tri_ref_.empty()) return {0, prim};
     const uint32_t g = tri_ref_[prim], m = mesh_holding(mesh_first_, g);
     return {m, g - mesh_first_[m]};
   }

@@ -94,7 +94,8 @@ template <int N>
 TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, const TriangleMesh& mesh, bool parallel) {
   check_prims(bvh.prim_indices, mesh.triangle_count());
   return fill_leaves(bvh, parallel, [&](uint32_t t, Vec3f* p) {
-    for (int j = 0; j < 3; ++j) p[j] = mesh.position(mesh.indices[3 * size_t(t) + j]);
+    const uint32_t* idx = mesh.triangle(t);
+    for (int j = 0; j < 3; ++j) p[j] = mesh.position(idx[j]);
   });
 }
 
@@ -110,7 +111,8 @@ TriangleLeaves make_triangle_leaves(const WideBvh<N>& bvh, std::span<const Trian
     const uint32_t m = mesh_holding(mesh_first, t);
     const TriangleMesh& mesh = meshes[m];
     const size_t local = t - mesh_first[m];
-    for (int j = 0; j < 3; ++j) p[j] = mesh.position(mesh.indices[3 * local + j]);
+    const uint32_t* idx = mesh.triangle(local);
+    for (int j = 0; j < 3; ++j) p[j] = mesh.position(idx[j]);
   });
 }
 

@@ -65,4 +65,11 @@ HugePageVector<T> make_huge_page_vector(size_t n) {
   return v;
 }
 
+/// Frees a vector's storage. `v = {}` does not: it picks the initializer-list assignment, which only clears and
+/// keeps the capacity (the BVH build's 32 B/tri references stayed resident that way).
+template <class V>
+void free_storage(V& v) {
+  V().swap(v);
+}
+
 }  // namespace torte

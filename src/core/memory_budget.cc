@@ -53,6 +53,17 @@ uint64_t resident_memory() {
   return n == 2 ? uint64_t(resident) * uint64_t(sysconf(_SC_PAGESIZE)) : 0;
 }
 
+uint64_t peak_resident_memory() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return 0;
+  char line[256];
+  unsigned long long kb = 0;
+  while (std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "VmHWM: %llu kB", &kb) == 1) break;
+  std::fclose(f);
+  return uint64_t(kb) * 1024;
+}
+
 void reserve_memory(uint64_t bytes, std::string_view what) {
   if (bytes < (uint64_t(16) << 20)) return;
   const uint64_t limit = memory_limit();

@@ -20,6 +20,9 @@ uint64_t available_memory();
 /// The process's resident set now, in bytes (from /proc/self/statm; 0 when unknown).
 uint64_t resident_memory();
 
+/// The process's peak resident set so far (VmHWM in /proc/self/status), in bytes; 0 when unknown.
+uint64_t peak_resident_memory();
+
 /// Throws torte::Error naming `what`, the bytes asked for and the limit when allocating `bytes` more would take
 /// the process past memory_limit(). Requests below 16 MiB are not checked (the check reads /proc).
 void reserve_memory(uint64_t bytes, std::string_view what);

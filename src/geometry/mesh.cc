@@ -37,8 +37,8 @@ void TriangleMesh::validate(const std::string& what) const {
 }
 
 int64_t TriangleMesh::vertex_out_of_range() const {
-  for (size_t i = 0; i < x.size(); ++i) {
-    const Vec3f p{x[i], y[i], z[i]};
+  for (size_t i = 0; i < vertex_count(); ++i) {
+    const Vec3f p = position(uint32_t(i));
     if (!is_finite(p) || !in_coordinate_range(p)) return int64_t(i);
   }
   return -1;
@@ -48,8 +48,25 @@ std::string format_coordinates(Vec3f p) {
   return format_number(p.x) + ", " + format_number(p.y) + ", " + format_number(p.z);
 }
 
+size_t TriangleMesh::own_bytes() const {
+  return (x.size() + y.size() + z.size() + nx.size() + ny.size() + nz.size() + u.size() + v.size()) * sizeof(float) +
+         indices.size() * sizeof(uint32_t);
+}
+
+TriangleMesh make_placed(std::shared_ptr<const TriangleMesh> source, const Transform& t) {
+  if (!source || source->placed()) throw Error("internal: a placed mesh needs a source that is not placed");
+  TriangleMesh m;
+  m.nx = source->nx, m.ny = source->ny, m.nz = source->nz;
+  if (t.determinant3() < 0) m.indices = source->indices;  // transform() swaps their winding
+  m.transform(t);  // normals (and a mirror's triples); positions are the source's
+  m.source = std::move(source);
+  m.to_world = t;
+  return m;
+}
+
 void TriangleMesh::transform(const Transform& t) {
   if (t.is_identity()) return;
+  if (placed()) throw Error("internal: a placed mesh is transformed by its placement");
   for (size_t i = 0; i < x.size(); ++i) {
     const Vec3f p = t.apply_point(position(i));
     x[i] = p.x; y[i] = p.y; z[i] = p.z;
@@ -70,13 +87,14 @@ void TriangleMesh::transform(const Transform& t) {
 
 Bounds3f TriangleMesh::triangle_bounds(size_t tri) const {
   Bounds3f b;
-  for (int k = 0; k < 3; ++k) b.extend(position(indices[3 * tri + k]));
+  const uint32_t* idx = triangle(tri);
+  for (int k = 0; k < 3; ++k) b.extend(position(idx[k]));
   return b;
 }
 
 float TriangleMesh::triangle_area(size_t tri) const {
-  const Vec3f p0 = position(indices[3 * tri]), p1 = position(indices[3 * tri + 1]),
-              p2 = position(indices[3 * tri + 2]);
+  const uint32_t* idx = triangle(tri);
+  const Vec3f p0 = position(idx[0]), p1 = position(idx[1]), p2 = position(idx[2]);
   return 0.5f * length(cross(p1 - p0, p2 - p0));
 }
 

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -455,5 +457,57 @@ TriangleMesh parse_ply(std::string_view data, const std::string& name) {
 }
 
 TriangleMesh read_ply(const std::string& path) { return parse_ply(read_file_bytes(path), path); }
+
+void write_ply(const TriangleMesh& mesh, const std::string& path) {
+  static_assert(std::endian::native == std::endian::little, "write_ply writes the host's byte order");
+  const std::string tmp = path + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw Error(escape_text(path) + ": cannot be written (" + std::strerror(errno) + ")");
+  const bool normals = mesh.has_normals(), uvs = mesh.has_uvs();
+  std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by torte\nelement vertex " +
+                       std::to_string(mesh.vertex_count()) + "\nproperty float x\nproperty float y\nproperty float z\n";
+  if (normals) header += "property float nx\nproperty float ny\nproperty float nz\n";
+  if (uvs) header += "property float u\nproperty float v\n";
+  header += "element face " + std::to_string(mesh.triangle_count()) +
+            "\nproperty list uchar uint vertex_indices\nend_header\n";
+  std::vector<char> block;
+  bool ok = std::fwrite(header.data(), 1, header.size(), f) == header.size();
+  const auto put = [&block](const void* p, size_t n) {
+    const char* c = static_cast<const char*>(p);
+    block.insert(block.end(), c, c + n);
+  };
+  const auto flush = [&] {
+    ok = ok && std::fwrite(block.data(), 1, block.size(), f) == block.size();
+    block.clear();
+  };
+  constexpr size_t kBlock = size_t(1) << 20;
+  for (size_t i = 0; i < mesh.vertex_count() && ok; ++i) {
+    const Vec3f p = mesh.position(uint32_t(i));
+    put(&p, 12);
+    if (normals) {
+      const Vec3f n = mesh.normal(uint32_t(i));
+      put(&n, 12);
+    }
+    if (uvs) {
+      const Vec2f t = mesh.uv(uint32_t(i));
+      put(&t, 8);
+    }
+    if (block.size() >= kBlock) flush();
+  }
+  for (size_t t = 0; t < mesh.triangle_count() && ok; ++t) {
+    const uint8_t three = 3;
+    put(&three, 1);
+    put(mesh.triangle(t), 12);
+    if (block.size() >= kBlock) flush();
+  }
+  flush();
+  const int err = ok ? 0 : errno;
+  if (std::fclose(f) != 0 && ok) ok = false;
+  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(err ? err : errno);
+    std::remove(tmp.c_str());
+    throw Error(escape_text(path) + ": cannot be written (" + why + ")");
+  }
+}
 
 }  // namespace torte

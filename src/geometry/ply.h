@@ -16,5 +16,10 @@ namespace torte {
 TriangleMesh read_ply(const std::string& path);
 // The same for bytes already in memory; `name` starts every error message.
 TriangleMesh parse_ply(std::string_view data, const std::string& name);
+/// Writes `mesh` (placed meshes as placed, in world space) as binary little-endian PLY: float x y z, nx ny nz
+/// and u v when it has them, faces as uchar-counted uint lists. read_ply gives the same values back. Streams
+/// the body in blocks, so nothing of the mesh's size is allocated. Throws torte::Error("<path>: <reason>") when
+/// the file cannot be written.
+void write_ply(const TriangleMesh& mesh, const std::string& path);
 
 }  // namespace torte

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/huge_pages.h"
 #include "core/interrupt.h"
 #include "core/memory_budget.h"
 #include "core/parallel.h"
@@ -175,8 +176,8 @@ TriangleMesh subdivide_once(const TriangleMesh& m, float displacement, uint64_t 
       }
     }
   });
-  entries = {};
-  start = {};
+  free_storage(entries);
+  free_storage(start);
 
   // (a, b, c) with midpoints ab, bc, ca -> three corner triangles and the middle one, same winding.
   out.indices.resize(12 * T);

@@ -26,9 +26,9 @@ SurfaceHit triangle_surface(const TriangleMesh& mesh, const uint32_t* idx, const
   // Vertex uvs: the mesh's, or a fixed parameterization (0,0), (1,0), (1,1) of every triangle.
   Vec2f t0(0, 0), t1(1, 0), t2(1, 1);
   if (mesh.has_uvs()) {
-    t0 = Vec2f(mesh.u[idx[0]], mesh.v[idx[0]]);
-    t1 = Vec2f(mesh.u[idx[1]], mesh.v[idx[1]]);
-    t2 = Vec2f(mesh.u[idx[2]], mesh.v[idx[2]]);
+    t0 = mesh.uv(idx[0]);
+    t1 = mesh.uv(idx[1]);
+    t2 = mesh.uv(idx[2]);
   }
   s.uv = t0 * b0 + t1 * b1 + t2 * b2;
   // dp/du and dp/dv from the triangle's edges in position and uv (pbrt's construction).

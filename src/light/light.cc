@@ -104,7 +104,7 @@ void sample_area_light_point(const EmitterView& scene, const Light& light, Vec2f
     const TriangleMesh& mesh = scene.meshes[light.object];
     float u_rest;
     const int tri = light.triangles.sample_discrete(u.x, nullptr, &u_rest);
-    const uint32_t* idx = &mesh.indices[3 * size_t(tri)];
+    const uint32_t* idx = mesh.triangle(size_t(tri));
     const Vec3f p0 = mesh.position(idx[0]), p1 = mesh.position(idx[1]), p2 = mesh.position(idx[2]);
     const Vec3f b = sample_uniform_triangle(Vec2f(u_rest, u.y));
     *q = p0 * b.x + p1 * b.y + p2 * b.z;

@@ -169,7 +169,7 @@ struct SceneBuilder::Flattening {
               for (const VoxelEmitters::CellMesh& cm : it->second) {
                 const TriangleMesh& mesh = cell.meshes[cm.mesh];
                 for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-                  const uint32_t* idx = &mesh.indices[3 * t];
+                  const uint32_t* idx = mesh.triangle(t);
                   patches->add_triangle(T.apply_point(mesh.position(idx[0]) + offset),
                                         T.apply_point(mesh.position(idx[1]) + offset),
                                         T.apply_point(mesh.position(idx[2]) + offset), cm.radiance, true);
@@ -202,8 +202,8 @@ struct SceneBuilder::Flattening {
     throw_if_interrupted("building the scene");
     if (s.kind == ShapeDesc::Kind::Mesh) {
       if (!s.mesh) throw Error("internal: mesh shape without a mesh");
-      TriangleMesh mesh = *s.mesh;
-      mesh.transform(s.transform);
+      // Shares the shape's positions, uvs and triples (the script may hold the mesh too): no copy of a scan.
+      TriangleMesh mesh = make_placed(s.mesh, s.transform);
       if (const int64_t v = mesh.vertex_out_of_range(); v >= 0)
         throw Error(shape_name(s) + ": vertex " + std::to_string(v) + " lies at (" + format_coordinates(mesh.position(uint32_t(v))) +
                     ") once placed by its transform, beyond the range +-" + format_number(kMaxCoordinate) +

@@ -3,8 +3,10 @@
 #include <algorithm>
 
 #include <cmath>
+#include <unordered_set>
 
 #include "core/error.h"
+#include "core/huge_pages.h"
 #include "geometry/triangle.h"
 #include "scene/material_desc.h"
 
@@ -62,9 +64,9 @@ void Scene::finalize(ProgressCounter* progress) {
 // positions only when an area light samples it. This is what brings a mesh to 64 bytes per triangle in all.
 void Scene::release_positions() {
   auto release = [](TriangleMesh& m) {
-    m.x = {};
-    m.y = {};
-    m.z = {};
+    free_storage(m.x);
+    free_storage(m.y);
+    free_storage(m.z);
   };
   for (size_t i = 0; i < meshes.size(); ++i)
     if (objects[i].area_light < 0) release(meshes[i]);
@@ -98,19 +100,21 @@ void Scene::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool co
 size_t Scene::accel_bytes() const { return accel_.accel_bytes(); }
 
 namespace {
-size_t mesh_bytes(const TriangleMesh& m) {
-  return (m.x.size() + m.y.size() + m.z.size() + m.nx.size() + m.ny.size() + m.nz.size() + m.u.size() + m.v.size()) *
-             sizeof(float) +
-         m.indices.size() * sizeof(uint32_t);
+// A placed mesh's own arrays and, once per scene, the source it shares (which its shape holds anyway).
+size_t mesh_bytes(const TriangleMesh& m, std::unordered_set<const TriangleMesh*>& sources) {
+  size_t bytes = m.own_bytes();
+  if (m.placed() && sources.insert(m.source.get()).second) bytes += m.source->own_bytes();
+  return bytes;
 }
 }  // namespace
 
 size_t Scene::geometry_bytes() const {
   size_t bytes = quadrics.size() * sizeof(Quadric) + instances.size() * sizeof(Instance);
-  for (const TriangleMesh& m : meshes) bytes += mesh_bytes(m);
+  std::unordered_set<const TriangleMesh*> sources;
+  for (const TriangleMesh& m : meshes) bytes += mesh_bytes(m, sources);
   for (const auto& proto : prototypes) {
     bytes += proto->quadrics.size() * sizeof(Quadric);
-    for (const TriangleMesh& m : proto->meshes) bytes += mesh_bytes(m);
+    for (const TriangleMesh& m : proto->meshes) bytes += mesh_bytes(m, sources);
   }
   return bytes;
 }
