@@ -10,10 +10,12 @@
 
 #include "core/interrupt.h"
 #include "core/memory_budget.h"
+#include "distributed/session.h"
 #include "file_access.h"
 #include "film/image_io.h"
 #include "progress.h"
 #include "render_metadata.h"
+#include "render/render_control.h"
 #include "render/render_settings.h"
 #include "script_limits.h"
 #include "types.h"
@@ -253,6 +255,27 @@ void print_scene_summary(const Scene& scene) {
   }
 }
 
+// The fields of a render a checkpoint must match: image size, sampling, integrator and its parameters, the
+// scene's fingerprint (SceneBuilder::fingerprint, hashed) and which render of the script this is.
+std::string checkpoint_key(const RenderSettings& s, const std::string& integrator, const SceneBuilder& scene,
+                           int ordinal) {
+  uint64_t h = 1469598103934665603ull;  // FNV-1a over the fingerprint's words
+  for (const uint64_t w : scene.fingerprint())
+    for (int b = 0; b < 64; b += 8) h = (h ^ ((w >> b) & 0xff)) * 1099511628211ull;
+  char filter[96];
+  std::snprintf(filter, sizeof filter, "%d,%.9g,%.9g,%.9g", int(s.filter.kind()), double(s.filter.radius()),
+                double(s.filter.eval_1d(0.25f)), double(s.filter.eval_1d(0.75f)));
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(h));
+  return "render=" + std::to_string(ordinal + 1) + ";width=" + std::to_string(s.width) +
+         ";height=" + std::to_string(s.height) + ";spp=" + std::to_string(s.spp) + ";integrator=" + integrator +
+         ";seed=" + std::to_string(s.seed) + ";max_depth=" + std::to_string(s.max_depth) +
+         ";rr_depth=" + std::to_string(s.rr_depth) + ";sample_all_lights=" + std::to_string(s.sample_all_lights) +
+         ";tile_size=" + std::to_string(s.tile_size) + ";filter=" + filter + ";vpl_sets=" + std::to_string(s.vpl_sets) +
+         ";light_paths=" + std::to_string(s.light_paths) + ";g_limit=" + std::to_string(s.g_limit) +
+         ";vpl_roulette=" + std::to_string(s.vpl_roulette) + ";scene=" + hash;
+}
+
 int l_render(lua_State* L) {
   RunContext& ctx = run_context(L);
   KwArgs kw(L, 1, "torte.render");
@@ -335,6 +358,15 @@ int l_render(lua_State* L) {
   }
   const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
+  // Checkpoints: the key names what the image depends on, so a resume of another render is refused.
+  RenderControl control;
+  if (!ctx.checkpoint.empty() || !ctx.resume.empty()) {
+    control.checkpoint = ctx.checkpoint;
+    control.checkpoint_every = ctx.checkpoint_every;
+    control.resume = ctx.resume;
+    control.key = checkpoint_key(s, integrator, *scene, ctx.renders);
+    s.control = &control;
+  }
   ConsoleProgress progress("render");
   auto img = std::make_shared<RenderedImage>();
   RenderOutput out;
@@ -397,6 +429,10 @@ int image_write(lua_State* L) {
     kw.finish();
   }
   const RunContext& ctx = run_context(L);
+  if (dist::rank() != 0) {  // a distributed render's image is rank 0's; the other ranks write nothing
+    lua_settop(L, 1);
+    return 1;
+  }
   if (ctx.exposure_override) options.exposure = *ctx.exposure_override;
   if (ctx.tonemap_override) options.view = *ctx.tonemap_override;
   const auto t0 = std::chrono::steady_clock::now();

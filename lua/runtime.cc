@@ -10,6 +10,7 @@
 
 #include "core/interrupt.h"
 #include "core/memory_budget.h"
+#include "distributed/session.h"
 #include "progress.h"
 #include "sandbox.h"
 #include "script_libs.h"
@@ -183,6 +184,11 @@ void open_torte_module(lua_State* L, const RunOptions& options) {
     lua_setfield(L, -2, key.c_str());
   }
   lua_setfield(L, torte_index, "args");
+  // Under mpirun every rank runs the script: torte.rank (0 ...) and torte.ranks for what must differ.
+  lua_pushinteger(L, dist::rank());
+  lua_setfield(L, torte_index, "rank");
+  lua_pushinteger(L, dist::ranks());
+  lua_setfield(L, torte_index, "ranks");
   open_geometry(L, torte_index);
   open_materials(L, torte_index);
   open_lights(L, torte_index);
@@ -243,7 +249,7 @@ int report_failure(lua_State* L, int status, const RunOptions& options, const Sc
                    where.empty() ? "" : (" (" + where + ")").c_str());
       return kExitInterrupted;
     }
-    std::fprintf(stderr, "torte: error: %s\n", one_line(msg).c_str());
+    std::fprintf(stderr, "torte: error: %s%s\n", options.error_prefix.c_str(), one_line(msg).c_str());
   } catch (const std::exception&) {  // no memory even for the message
     std::fputs("torte: error: out of memory while reporting an error\n", stderr);
   }
@@ -274,6 +280,9 @@ int run_script(const RunOptions& options) {
   ctx.aovs = options.aovs;
   ctx.denoise = options.denoise;
   ctx.cancel = options.cancel;
+  ctx.checkpoint = options.checkpoint;
+  ctx.resume = options.resume;
+  ctx.checkpoint_every = options.checkpoint_every;
   std::optional<FilePolicy> policy;
   if (options.sandbox) {
     try {

@@ -27,6 +27,10 @@ struct RunOptions {
   std::vector<Aov> aovs;  // --aovs: AOV layers added to every render
   bool denoise = false;   // --denoise: every render is denoised (its noisy image kept as a layer)
   const std::atomic<bool>* cancel = nullptr;  // renders stop when it becomes true (main: torte::interrupt_flag())
+  // --checkpoint FILE, --checkpoint-every SECONDS, --resume FILE (render/render_control.h)
+  std::string checkpoint, resume;
+  double checkpoint_every = 60;
+  std::string error_prefix;  // put before error messages ("rank 1: " under mpirun)
   // --sandbox (docs/security.md): the restricted libraries and the file policy of lua/sandbox.h.
   bool sandbox = false;
   std::vector<std::string> allow_read, allow_write;  // --allow-read DIR, --allow-write DIR

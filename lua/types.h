@@ -62,6 +62,8 @@ struct RunContext {
   std::vector<Aov> aovs;                            // --aovs: added to every render's
   bool denoise = false;                             // --denoise: every render is denoised
   const std::atomic<bool>* cancel = nullptr;  // set by Ctrl-C
+  std::string checkpoint, resume;              // --checkpoint, --resume (render/render_control.h)
+  double checkpoint_every = 60;                // --checkpoint-every
   bool interrupted = false;     // a render was cut short: later renders are refused
   // Totals over the run, for the closing summary.
   double build_seconds = 0, render_seconds = 0, write_seconds = 0;

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/memory_budget.h"
+#include "distributed/session.h"
 #include "runtime.h"
 
 namespace {
@@ -44,6 +45,11 @@ const std::string kUsage =
     "  --exposure STOPS        display outputs (PNG, JPEG): scale by 2^STOPS (overrides the script's exposure)\n"
     "  --tonemap VIEW          display outputs: view transform standard, filmic (ACES) or agx (overrides the\n"
     "                          script's tonemap)\n"
+    "  --checkpoint FILE       write each render's film to FILE every --checkpoint-every seconds and on Ctrl-C\n"
+    "                          (atomically: FILE.tmp, then renamed)\n"
+    "  --checkpoint-every S    seconds between checkpoints (default: 60)\n"
+    "  --resume FILE           continue the render FILE was written for (same script, arguments and settings)\n"
+    "                          to the image an uninterrupted render makes, bit for bit\n"
     "  --max-memory SIZE       the memory torte may use, e.g. 8G or 512M (default: 3/4 of the RAM)\n"
     "  --lua-memory SIZE       the memory the script's Lua heap may hold (default: half of --max-memory)\n"
     "  --lua-instructions N    stop the script after N Lua instructions (default: 0, no limit; under\n"
@@ -108,6 +114,7 @@ uint64_t parse_size(const char* option, const char* value, uint64_t min) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  torte::dist::init(&argc, &argv);  // under mpirun or srun: this process is one rank of a distributed render
   torte::lua::RunOptions options;
   constexpr int64_t kIntMax = std::numeric_limits<int>::max();
   constexpr int64_t kInt64Max = std::numeric_limits<int64_t>::max();
@@ -153,6 +160,13 @@ int main(int argc, char** argv) {
       options.spp_override = int(parse_integer("--spp", option_value(argc, argv, i, "--spp"), 1, kIntMax));
     } else if (a == "--seed") {
       options.seed_override = parse_integer("--seed", option_value(argc, argv, i, "--seed"), 0, kInt64Max);
+    } else if (a == "--checkpoint") {
+      options.checkpoint = option_value(argc, argv, i, "--checkpoint");
+    } else if (a == "--checkpoint-every") {
+      options.checkpoint_every =
+          double(parse_integer("--checkpoint-every", option_value(argc, argv, i, "--checkpoint-every"), 0, 1 << 30));
+    } else if (a == "--resume") {
+      options.resume = option_value(argc, argv, i, "--resume");
     } else if (a == "--max-memory") {
       torte::set_memory_limit(parse_size("--max-memory", option_value(argc, argv, i, "--max-memory"), 1 << 20));
     } else if (a == "--lua-memory") {
@@ -194,5 +208,11 @@ int main(int argc, char** argv) {
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(threads));
   options.cancel = &torte::interrupt_flag();
   std::signal(SIGINT, on_sigint);
-  return torte::lua::run_script(options);
+  if (torte::dist::distributed()) {
+    // mpirun turns Ctrl-C into SIGTERM for every rank: stop the same way, so rank 0 writes the partial image.
+    std::signal(SIGTERM, on_sigint);
+    options.error_prefix = "rank " + std::to_string(torte::dist::rank()) + ": ";
+    if (torte::dist::rank() != 0) options.quiet = true;  // rank 0 prints the progress and the summary
+  }
+  return torte::dist::finish(torte::lua::run_script(options));
 }

@@ -37,6 +37,8 @@ class SplatBuffer {
     splats_.push_back({uint32_t(int(raster.y)) * uint32_t(width) + uint32_t(int(raster.x)), value});
     return true;
   }
+  /// Appends a splat made elsewhere (a checkpoint, another process); `s.pixel` must lie in the film.
+  void append(const Splat& s) { splats_.push_back(s); }
   void clear() { splats_.clear(); }
   size_t size() const { return splats_.size(); }
   std::span<const Splat> splats() const { return splats_; }
@@ -78,6 +80,13 @@ class Film {
   }
 
   const PixelSum& sum(uint32_t pixel) const { return sums_[pixel]; }
+  /// The raw sums, for checkpoints and for moving tiles between processes (distributed rendering): a film
+  /// restored from them continues summing exactly where the saved one stopped.
+  std::span<PixelSum> sums() { return sums_; }
+  std::span<const PixelSum> sums() const { return sums_; }
+  /// The splat sums (empty until the first merge) and their restoration (`s` empty or one per pixel).
+  std::span<const Rgb> splat_sums() const { return splats_; }
+  void set_splat_sums(std::vector<Rgb> s) { splats_ = std::move(s); }
   Rgb splat_sum(uint32_t pixel) const { return splats_.empty() ? Rgb(0) : splats_[pixel]; }
 
   /// The image: weighted mean of the camera samples of each pixel (black without any) plus the pixel's splat sum

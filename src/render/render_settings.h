@@ -56,6 +56,8 @@ struct RenderSettings {
   float g_limit = 20;
   float vpl_roulette = 0.25f;
   bool stage_stats = false;  // collect RenderStats::stages (torte --stats): one clock reading per stage call
+  // Checkpoints and resuming (render/render_control.h); null: neither. Not part of what the image depends on.
+  const struct RenderControl* control = nullptr;
 };
 
 /// What the shared stages need to know about the light transport an integrator wants.

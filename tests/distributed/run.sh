@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Distributed rendering and checkpoint tests (docs/distributed.md), run by ctest on the real binary:
+#   run.sh TORTE SOURCE_DIR MPI_FOUND MODE [args]
+# Images are compared pixel for pixel with idiff -fail 0 (EXR metadata such as the render time differs).
+# Exit 77 (ctest: skipped) for the MPI modes when torte was built without MPI.
+set -uo pipefail
+torte=$1 src=$2 mpi=$3 mode=$4
+shift 4
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+scene="$src/scenes/cornell-box.lua"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+same() {  # same pixels, bit for bit
+  idiff -q -fail 0 -warn 0 "$1" "$2" >/dev/null 2>&1 || { idiff -fail 0 -warn 0 "$1" "$2" >&2; fail "$1 and $2 differ"; }
+}
+need_mpi() {
+  if [[ "$mpi" != 1 && "$mpi" != TRUE && "$mpi" != ON ]]; then
+    echo "skipped: torte was built without MPI (install libopenmpi-dev: scripts/install-deps.sh)"
+    exit 77
+  fi
+}
+
+case "$mode" in
+  ranks)  # run.sh ... ranks R integrator: R ranks make the one-process image
+    need_mpi
+    ranks=$1 integrator=$2
+    args=(width=48 height=40 spp=12 integrator="$integrator")
+    "$torte" --quiet --threads 2 "$scene" "${args[@]}" output=one.exr || fail "one-process render"
+    timeout 120 mpirun --oversubscribe --allow-run-as-root -n "$ranks" "$torte" --quiet --threads 1 "$scene" \
+      "${args[@]}" output=many.exr || fail "mpirun -n $ranks"
+    same one.exr many.exr
+    ;;
+  failing-rank)  # a rank's script error ends the job quickly, naming the rank
+    need_mpi
+    start=$(date +%s.%N)
+    timeout 60 mpirun --oversubscribe --allow-run-as-root -n 2 "$torte" --quiet --threads 1 \
+      "$src/tests/distributed/fail_on_rank1.lua" >out.txt 2>&1
+    code=$?
+    seconds=$(echo "$(date +%s.%N) - $start" | bc)
+    [[ $code -ne 0 && $code -ne 124 ]] || { cat out.txt >&2; fail "exit code $code (124: timed out)"; }
+    grep -q "torte: error: rank 1: .*rank one refuses to render" out.txt || { cat out.txt >&2; fail "no error line naming rank 1"; }
+    (( $(echo "$seconds < 10" | bc) )) || fail "took ${seconds} s (limit 10 s)"
+    ;;
+  resume)  # run.sh ... resume integrator [R]: Ctrl-C leaves a checkpoint; --resume (on R ranks if given) makes
+           # the uninterrupted image. The interruption is of a one-process run: mpirun's own signal handling
+           # (SIGTERM, then SIGKILL) is not under test here (docs/distributed.md).
+    integrator=$1 ranks=${2:-0}
+    run=("$torte")
+    resume=("$torte")
+    if [[ $ranks -gt 0 ]]; then
+      need_mpi
+      resume=(mpirun --oversubscribe --allow-run-as-root -n "$ranks" "$torte")
+    fi
+    args=(width=64 height=64 spp=48 integrator="$integrator")
+    "$torte" --quiet --threads 2 "$scene" "${args[@]}" output=full.exr || fail "uninterrupted render"
+    "${run[@]}" --quiet --threads 1 --checkpoint ck.bin --checkpoint-every 0 "$scene" "${args[@]}" output=cut.exr &
+    pid=$!
+    for _ in $(seq 1 400); do [[ -f ck.bin ]] && break; sleep 0.05; done
+    [[ -f ck.bin ]] || fail "no checkpoint appeared"
+    kill -INT $pid
+    wait $pid
+    code=$?
+    [[ $code -eq 130 ]] || fail "interrupted render exited with $code, expected 130 (finished before the interrupt?)"
+    [[ -f cut.exr ]] || fail "the interrupted render wrote no partial image"
+    [[ ! -f ck.bin.tmp ]] || fail "a temporary checkpoint was left behind"
+    "${resume[@]}" --quiet --threads 1 --resume ck.bin "$scene" "${args[@]}" output=resumed.exr || fail "resume"
+    same full.exr resumed.exr
+    ;;
+  refuse)  # a checkpoint of other settings is refused with one line
+    "$torte" --quiet --checkpoint ck.bin "$scene" width=32 height=32 spp=4 output=a.exr || fail "render"
+    "$torte" --quiet --resume ck.bin "$scene" width=32 height=32 spp=8 output=b.exr 2>err.txt
+    code=$?
+    [[ $code -eq 1 ]] || fail "resume of another render exited with $code"
+    [[ $(wc -l <err.txt) -eq 1 ]] || { cat err.txt >&2; fail "not one line"; }
+    grep -q "checkpoint is of another render (checkpoint has spp=4, this render spp=8)" err.txt ||
+      { cat err.txt >&2; fail "unclear message"; }
+    "$torte" --quiet --resume ck.bin "$src/scenes/shapes.lua" width=32 height=32 spp=4 output=c.exr 2>err.txt
+    [[ $? -eq 1 ]] && grep -q "checkpoint is of another render" err.txt || { cat err.txt >&2; fail "other scene accepted"; }
+    ;;
+  *) fail "unknown mode $mode" ;;
+esac
+echo "ok: $mode $*"
