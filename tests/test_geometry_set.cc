@@ -254,7 +254,7 @@ TEST_CASE("geometry_set: a placed mesh shares its source and hits like a transfo
   int hits = 0;
   for (int i = 0; i < 400; ++i) {
     const Vec3f o{rng.next_float() * 8 - 4, rng.next_float() * 8 - 4, -6};
-    const Vec3f target = t.apply_point({rng.next_float() * 12, rng.next_float() * 12, 0});
+    const Vec3f target = t.apply_point({rng.next_float(), rng.next_float(), 0});  // the grid spans [0, 1]^2
     Ray a{o, normalize(target - o)}, b = a;
     Hit ha, hb;
     const bool fa = placed.intersect(a, &ha), fb = copied.intersect(b, &hb);

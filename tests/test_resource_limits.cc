@@ -273,7 +273,7 @@ TEST_CASE("limits: BVH builds, environment maps and voxel grids check the budget
   {
     ScopedMemoryLimit limit(uint64_t(96) << 20);
     CHECK_THAT(error_of([&] { build_binary_bvh(prims, BvhBuildOptions{}); }),
-               Contains("BVH build of 1048576 primitives needs ~164 MB") && Contains("over the memory limit"));
+               Contains("BVH build of 1048576 primitives needs ~68.0 MB") && Contains("over the memory limit"));
   }
   Image sky(2048, 1024);
   for (Rgb& p : sky.pixels) p = Rgb(1);

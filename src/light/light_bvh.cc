@@ -64,8 +64,8 @@ DirectionCone mesh_normals(const TriangleMesh& mesh) {
   std::vector<Vec3f> normals;
   normals.reserve(mesh.triangle_count());
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const Vec3f p0 = mesh.position(mesh.indices[3 * t]), p1 = mesh.position(mesh.indices[3 * t + 1]),
-                p2 = mesh.position(mesh.indices[3 * t + 2]);
+    const uint32_t* idx = mesh.triangle(t);
+    const Vec3f p0 = mesh.position(idx[0]), p1 = mesh.position(idx[1]), p2 = mesh.position(idx[2]);
     const Vec3f n = cross(p1 - p0, p2 - p0);
     if (length_squared(n) == 0) continue;
     normals.push_back(normalize(n));
