@@ -215,6 +215,10 @@ void print_summary(const RenderedImage& img, const RenderSettings& s) {
                format_duration(st.render_seconds).c_str(),
                double(st.rays()) * 1e-6, double(st.camera_rays) * 1e-6, double(st.extension_rays) * 1e-6,
                double(st.shadow_rays) * 1e-6, mrays, static_cast<unsigned long long>(st.dropped_samples));
+  if (st.units > 0)
+    std::fprintf(stderr, "distributed over %d ranks: %.1f %% of the %llu units (tile, pass) rendered by ranks 1-%d\n",
+                 dist::ranks(), 100.0 * double(st.remote_units) / double(st.units),
+                 static_cast<unsigned long long>(st.units), dist::ranks() - 1);
   if (!img.image.layers.empty()) {
     std::string names;
     for (const ImageLayer& l : img.image.layers) names += (names.empty() ? "" : ", ") + l.name;
@@ -397,7 +401,8 @@ int l_render(lua_State* L) {
   ctx.dropped_samples += out.stats.dropped_samples;
   ++ctx.renders;
   if (!ctx.quiet) print_scene_summary(flat);
-  if (!ctx.quiet || out.stats.interrupted) print_summary(*img, s);
+  // --quiet still reports a stopped render; in a distributed one only rank 0 speaks for the frame.
+  if (!ctx.quiet || (out.stats.interrupted && dist::rank() == 0)) print_summary(*img, s);
   if (ctx.stats) std::fputs(format_stage_table(out.stats.stages, out.stats.render_seconds).c_str(), stderr);
   if (out.stats.dropped_samples > 0 && ctx.quiet)
     std::fprintf(stderr, "warning: %llu NaN/Inf samples were dropped\n",

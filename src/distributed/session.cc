@@ -43,6 +43,12 @@ int finish(int code) {
       std::fflush(stderr);
       MPI_Abort(MPI_COMM_WORLD, code);
     }
+    if (code == 130) {
+      // Interrupted: mpirun is killing the job and does not serve MPI_Finalize's fence until its SIGKILL
+      // timeout ends. The images are written; leave without it.
+      std::fflush(nullptr);
+      std::_Exit(code);
+    }
     MPI_Finalize();
   }
 #endif

@@ -15,7 +15,7 @@ int ranks();
 inline bool distributed() { return ranks() > 1; }
 /// Ends MPI: a clean finalize for exit code 0 or 130, MPI_Abort for any other (the error line was printed, the
 /// other ranks are stopped instead of waiting forever for this one). Returns `code` when it returns.
-int finish(int code);
+int finish(int code);  // (an interrupted rank, code 130, exits without MPI_Finalize)
 /// Prints "torte: error: rank R: <message>" and stops every rank (MPI_Abort); for failures outside the script.
 [[noreturn]] void abort_all(const std::string& message);
 

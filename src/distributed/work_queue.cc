@@ -161,6 +161,7 @@ std::vector<uint64_t> Coordinator::serve() {
             continue;
           }
           get_tile(in, film_, tiles_[t]);
+          ++remote_units_;
           SplatBuffer splats;
           const uint64_t ns = in.value<uint64_t>();
           for (uint64_t s = 0; s < ns; ++s) splats.append(in.value<SplatBuffer::Splat>());

@@ -48,6 +48,8 @@ class Coordinator {
   /// over; returns the counts their drivers add at the end (Client::finish), summed.
   std::vector<uint64_t> serve();
   size_t pass() const { return pass_; }
+  /// Units rendered by the other ranks and returned so far (the summary's load balance).
+  uint64_t remote_units() const { return remote_units_; }
   const std::vector<uint8_t>& done() const { return done_; }
 
  private:
@@ -63,6 +65,7 @@ class Coordinator {
   Hooks hooks_;
   std::mutex mutex_;
   std::condition_variable changed_;
+  uint64_t remote_units_ = 0;
   std::deque<uint32_t> queue_;  // tiles of the pass not handed out
   size_t out_ = 0;              // tiles handed out, not returned
   size_t done_count_ = 0;

@@ -76,6 +76,8 @@ struct RenderStats {
   uint64_t samples_done = 0;     // camera samples that reached the film (or were dropped)
   double render_seconds = 0;
   bool interrupted = false;
+  // A distributed render (rank 0): the (tile, pass) units of this render and how many other ranks rendered.
+  uint64_t units = 0, remote_units = 0;
   StageStats stages;  // the per-stage profile, filled when RenderSettings::stage_stats is set
   uint64_t rays() const { return camera_rays + extension_rays + shadow_rays; }
   void add(const RenderStats& o) {

@@ -54,12 +54,17 @@ struct PassProgress {
 // Checkpoint bookkeeping of run_tiles: when one is due and writing it (render/render_control.h).
 class CheckpointClock {
  public:
+  // Only rank 0 of a distributed render holds the film; the other ranks writing the same file would race it.
   explicit CheckpointClock(const RenderControl* control)
-      : control_(control && !control->checkpoint.empty() ? control : nullptr), last_(std::chrono::steady_clock::now()) {}
+      : control_(control && !control->checkpoint.empty() && dist::rank() == 0 ? control : nullptr),
+        last_(std::chrono::steady_clock::now()) {}
   bool enabled() const { return control_ != nullptr; }
+  // A distributed checkpoint waits for every unit out on the other ranks to come back, so it is written at most
+  // once a second there (every 0 would otherwise serialise the ranks).
   bool due() const {
-    return control_ && std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >=
-                           control_->checkpoint_every;
+    const double every = dist::distributed() ? std::max(control_ ? control_->checkpoint_every : 0.0, 1.0)
+                                             : (control_ ? control_->checkpoint_every : 0.0);
+    return control_ && std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >= every;
   }
   void write(Checkpoint& c) {
     c.key = control_->key;

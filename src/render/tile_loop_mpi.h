@@ -162,6 +162,8 @@ RenderOutput run_tiles_distributed(const Scene& scene, const RenderSettings& set
   out.stats.stages.enabled = settings.stage_stats;
   driver.finish(out.stats);
   out.stats.interrupted = cancelled() && out.stats.samples_done < samples_total;
+  out.stats.units = uint64_t(tiles.size()) * passes.size();
+  out.stats.remote_units = queue.remote_units();
   const uint64_t pixels = uint64_t(settings.width) * uint64_t(settings.height);
   out.image = film.image(splat && out.stats.samples_done > 0 ? float(double(pixels) / double(out.stats.samples_done))
                                                               : 1.0f);
