@@ -291,6 +291,7 @@ int l_render(lua_State* L) {
   s.spp = kw.integer("spp", 16);
   s.max_depth = kw.integer("max_depth", 64);
   s.rr_depth = kw.integer("rr_depth", 3);
+  s.tile_size = kw.integer("tile_size", 16);
   const std::string integrator = kw.string("integrator", "path");
   if (integrator == "path") {
     s.integrator = IntegratorKind::Path;
