@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/file_read.h"
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_normals.h"
 #include "geometry/obj.h"
@@ -576,4 +577,30 @@ TEST_CASE("PLY: write_ply to an unwritable path is one error naming the path", "
   const std::string msg2 = error_of([&] { write_ply(m, (dir.path / "taken.ply").string()); });
   CHECK(msg2.find("cannot be written") != std::string::npos);
   CHECK(!fs::exists(dir.path / "taken.ply.tmp"));
+}
+
+namespace {
+// This process's resident set in bytes (/proc/self/statm, second field, in pages).
+uint64_t resident_bytes() {
+  std::ifstream statm("/proc/self/statm");
+  uint64_t size = 0, resident = 0;
+  statm >> size >> resident;
+  return resident * uint64_t(sysconf(_SC_PAGESIZE));
+}
+}  // namespace
+
+// Issue 25: read_ply hands the file's pages back as it parses, so a scan and its file are not held whole together.
+TEST_CASE("FileBytes: reads the file exactly and release_before returns its pages", "[mesh_io][memory]") {
+  TempDir dir("filebytes");
+  std::string bytes(size_t(64) << 20, '\0');
+  for (size_t i = 0; i < bytes.size(); i += 4096) bytes[i] = char('a' + (i >> 12) % 26);
+  const std::string path = dir.write("big.bin", bytes);
+  FileBytes file(path);
+  REQUIRE(file.bytes() == bytes);  // every page touched: resident
+  const uint64_t before = resident_bytes();
+  file.release_before(file.bytes().data() + file.bytes().size());
+  const uint64_t after = resident_bytes();
+  CHECK(after + (uint64_t(48) << 20) <= before);  // the 64 MB came back (other allocations may move a little)
+  file.release_before(file.bytes().data());       // going back is harmless
+  CHECK(error_of([&] { FileBytes missing((dir.path / "none.bin").string()); }).find("cannot open") == 0);
 }

@@ -1,6 +1,7 @@
 #include "core/file_read.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -89,6 +90,57 @@ std::string read_file_bytes(const std::string& path, uint64_t max_bytes) {
                      " bytes (the file shrank while it was read)");
   bytes.resize(got);
   return bytes;
+}
+
+FileBytes::FileBytes(const std::string& path, uint64_t max_bytes) {
+  if (max_bytes == 0) max_bytes = max_file_bytes();
+  Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
+  if (f.fd < 0) cannot_open(path, std::strerror(errno));
+  struct stat st;
+  if (::fstat(f.fd, &st) != 0) refuse(path, std::strerror(errno));
+  check_mode(path, st);
+  const uint64_t size = uint64_t(st.st_size);
+  if (size == 0) {  // procfs and the like report 0: read to the end the usual way
+    small_ = read_file_bytes(path, max_bytes);
+    data_ = small_.data(), size_ = small_.size();
+    return;
+  }
+  check_size(path, size, max_bytes);
+  reserve_memory(size, "reading '" + escape_text(path) + "'");
+  void* m = ::mmap(nullptr, size_t(size), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (m == MAP_FAILED) refuse(path, std::string("cannot allocate ") + format_bytes(size) + " (" + std::strerror(errno) + ")");
+  data_ = static_cast<char*>(m), mapped_ = size_t(size);
+  size_t got = 0;
+  while (got < mapped_) {
+    const ssize_t n = ::read(f.fd, data_ + got, mapped_ - got);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const std::string why = std::string("read error (") + std::strerror(errno) + ")";
+      ::munmap(data_, mapped_);
+      refuse(path, why);
+    }
+    if (n == 0) break;
+    got += size_t(n);
+  }
+  if (got != mapped_) {
+    ::munmap(data_, mapped_);
+    refuse(path, "read " + std::to_string(got) + " of " + std::to_string(size) +
+                     " bytes (the file shrank while it was read)");
+  }
+  size_ = got;
+}
+
+FileBytes::~FileBytes() {
+  if (mapped_) ::munmap(data_, mapped_);
+}
+
+void FileBytes::release_before(const char* p) {
+  if (!mapped_ || p < data_ || p > data_ + size_) return;
+  const size_t page = size_t(::sysconf(_SC_PAGESIZE));
+  const size_t end = (size_t(p - data_) / page) * page;
+  if (end <= released_) return;
+  ::madvise(data_ + released_, end - released_, MADV_DONTNEED);  // anonymous pages: freed, not written back
+  released_ = end;
 }
 
 std::string regular_file_problem(const std::string& path, uint64_t* size) {

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace torte {
 
@@ -17,6 +18,25 @@ uint64_t max_file_bytes();
 /// larger than `max_bytes` (0: max_file_bytes()) or changes size while it is read. Files whose size the kernel
 /// reports as 0 (/proc) are read to their end, within the same bound.
 std::string read_file_bytes(const std::string& path, uint64_t max_bytes = 0);
+
+/// A file read whole, as read_file_bytes reads it (same checks and bound), into memory whose front a parser can
+/// hand back as it goes (release_before), so a reader building a mesh of the file's size does not hold both at
+/// their full size. Anonymous pages, not a file mapping: a file truncated while it is parsed cannot SIGBUS.
+class FileBytes {
+ public:
+  explicit FileBytes(const std::string& path, uint64_t max_bytes = 0);
+  ~FileBytes();
+  FileBytes(const FileBytes&) = delete;
+  FileBytes& operator=(const FileBytes&) = delete;
+  std::string_view bytes() const { return {data_, size_}; }
+  /// Returns the whole pages before `p` (a pointer into bytes()) to the system; they must not be read again.
+  void release_before(const char* p);
+
+ private:
+  char* data_ = nullptr;
+  size_t size_ = 0, mapped_ = 0, released_ = 0;
+  std::string small_;  // files whose size the kernel reports as 0 (procfs): read_file_bytes
+};
 
 /// Throws torte::Error("cannot open '<path>' ...") unless `path` names an existing regular file (after
 /// symlinks), for files a library opens by name. Returns the file's size in bytes.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/file_read.h"
 #include "core/memory_budget.h"
 #include "core/text.h"
 #include "geometry/mesh_io.h"
@@ -168,6 +169,7 @@ class BinarySource {
  public:
   BinarySource(const char* p, const char* end) : p_(p), end_(end) {}
   size_t remaining() const { return size_t(end_ - p_); }
+  const char* at() const { return p_; }
   void begin_element() {}
   void end_element() {}
   double scalar(Type t) {
@@ -210,6 +212,7 @@ class AsciiSource {
  public:
   AsciiSource(const char* p, const char* end, size_t line) : p_(p), end_(end), line_(line) {}
   size_t remaining() const { return size_t(end_ - p_); }
+  const char* at() const { return p_; }
   size_t line() const { return line_; }
   // Skips blank lines before an element.
   void begin_element() {
@@ -288,7 +291,11 @@ uint64_t list_count(Src& src, Type t) {
 // Reads every element in file order into `m`; `vertex`/`face` point into h.elements (face may be null).
 template <class Src>
 void read_body(Src& src, const Header& h, const Element* vertex, const Element* face, TriangleMesh& m,
-               const std::string& name) {
+               const std::string& name, const PlyRelease& release) {
+  // Every 2^16 elements the bytes behind go back (read_ply): the file and the mesh are not held whole together.
+  const auto maybe_release = [&](uint64_t i) {
+    if (release && (i & 0xFFFF) == 0) release(src.at());
+  };
   const bool ascii = h.format == Format::Ascii;
   const uint64_t body_bytes = src.remaining();
   bool slot_used[kSlotCount] = {};
@@ -304,6 +311,7 @@ void read_body(Src& src, const Header& h, const Element* vertex, const Element* 
         for (int s = 0; s < kSlotCount; ++s)
           if (slot_used[s]) dest[s]->reserve(reservable);
         for (; i < e.count; ++i) {
+          maybe_release(i);
           src.begin_element();
           for (const Property& p : e.props) {
             if (p.list) {
@@ -318,6 +326,7 @@ void read_body(Src& src, const Header& h, const Element* vertex, const Element* 
       } else if (&e == face) {
         m.indices.reserve(3 * reservable);
         for (; i < e.count; ++i) {
+          maybe_release(i);
           src.begin_element();
           for (const Property& p : e.props) {
             const uint64_t n = p.list ? list_count(src, p.count_type) : 1;
@@ -406,7 +415,7 @@ void assign_slots(Element& vertex, Element* face, const std::string& name) {
 
 }  // namespace
 
-TriangleMesh parse_ply(std::string_view data, const std::string& name) {
+TriangleMesh parse_ply(std::string_view data, const std::string& name, const PlyRelease& release) {
   Header h = parse_header(data, name);
   Element *vertex = nullptr, *face = nullptr;
   for (Element& e : h.elements) {
@@ -437,13 +446,13 @@ TriangleMesh parse_ply(std::string_view data, const std::string& name) {
   if (h.format == Format::Ascii) {
     const size_t header_lines = size_t(std::count(data.data(), body, '\n'));
     AsciiSource src(body, end, header_lines + 1);
-    read_body(src, h, vertex, face, m, name);
+    read_body(src, h, vertex, face, m, name, release);
   } else if ((h.format == Format::BinaryBE) == (std::endian::native == std::endian::big)) {
     BinarySource<false> src(body, end);
-    read_body(src, h, vertex, face, m, name);
+    read_body(src, h, vertex, face, m, name, release);
   } else {
     BinarySource<true> src(body, end);
-    read_body(src, h, vertex, face, m, name);
+    read_body(src, h, vertex, face, m, name, release);
   }
   // Unit normals as the renderer expects; zero or broken ones become zero (geometric normal at shading).
   for (size_t i = 0; i < m.nx.size(); ++i) {
@@ -456,7 +465,10 @@ TriangleMesh parse_ply(std::string_view data, const std::string& name) {
   return m;
 }
 
-TriangleMesh read_ply(const std::string& path) { return parse_ply(read_file_bytes(path), path); }
+TriangleMesh read_ply(const std::string& path) {
+  FileBytes file(path);
+  return parse_ply(file.bytes(), path, [&file](const char* p) { file.release_before(p); });
+}
 
 void write_ply(const TriangleMesh& mesh, const std::string& path) {
   static_assert(std::endian::native == std::endian::little, "write_ply writes the host's byte order");
