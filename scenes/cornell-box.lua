@@ -2,7 +2,7 @@
 -- Cornell Program of Computer Graphics). Units are millimetres; +x points to the image's left.
 --
 --   torte scenes/cornell-box.lua [width=512] [height=512] [spp=256] [max_depth=64]
---                                [integrator=path|direct|igi|lt|bdpt] [output=out/cornell-box.exr]
+--                                [integrator=path|direct|igi|lt|bdpt|vcm|ppm] [output=out/cornell-box.exr]
 --                                [vpl_sets=4] [light_paths=64] [g_limit=20] [vpl_roulette=0.25]   (igi only)
 local torte = require "torte"
 
