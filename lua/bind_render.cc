@@ -277,7 +277,8 @@ std::string checkpoint_key(const RenderSettings& s, const std::string& integrato
          ";rr_depth=" + std::to_string(s.rr_depth) + ";sample_all_lights=" + std::to_string(s.sample_all_lights) +
          ";tile_size=" + std::to_string(s.tile_size) + ";filter=" + filter + ";vpl_sets=" + std::to_string(s.vpl_sets) +
          ";light_paths=" + std::to_string(s.light_paths) + ";g_limit=" + std::to_string(s.g_limit) +
-         ";vpl_roulette=" + std::to_string(s.vpl_roulette) + ";scene=" + hash;
+         ";vpl_roulette=" + std::to_string(s.vpl_roulette) + ";radius=" + std::to_string(s.merge_radius) +
+         ";alpha=" + std::to_string(s.merge_alpha) + ";scene=" + hash;
 }
 
 int l_render(lua_State* L) {
@@ -303,9 +304,13 @@ int l_render(lua_State* L) {
     s.integrator = IntegratorKind::Lt;
   } else if (integrator == "bdpt") {
     s.integrator = IntegratorKind::Bdpt;
+  } else if (integrator == "vcm") {
+    s.integrator = IntegratorKind::Vcm;
+  } else if (integrator == "ppm") {
+    s.integrator = IntegratorKind::Ppm;
   } else {
-    kw.fail("integrator",
-            "must be \"path\", \"direct\", \"igi\", \"lt\" or \"bdpt\", got \"" + integrator + "\"");
+    kw.fail("integrator", "must be \"path\", \"direct\", \"igi\", \"lt\", \"bdpt\", \"vcm\" or \"ppm\", got \"" +
+                              integrator + "\"");
   }
   // The seed's direct-lighting renderer samples every light at every hit; path tracing picks one by power. igi
   // handles direct light as direct does.
@@ -318,6 +323,9 @@ int l_render(lua_State* L) {
   s.light_paths = kw.integer("light_paths", s.light_paths);
   s.g_limit = float(kw.number("g_limit", s.g_limit));
   s.vpl_roulette = float(kw.number("vpl_roulette", s.vpl_roulette));
+  // Vertex connection and merging, progressive photon mapping (render/integrator_vcm.h); checked always.
+  s.merge_radius = float(kw.number("radius", s.merge_radius));
+  s.merge_alpha = float(kw.number("alpha", s.merge_alpha));
   const int seed = kw.integer("seed", 0);
   if (seed < 0) kw.fail("seed", "must be a non-negative integer");
   s.seed = uint64_t(seed);
@@ -333,11 +341,13 @@ int l_render(lua_State* L) {
   if (s.integrator == IntegratorKind::Lt)  // light paths connect to the camera: it must allow that
     if (const std::string why = Camera(*camera, s.width, s.height).connect_problem(); !why.empty())
       kw.fail("camera", "cannot be used with integrator \"lt\": " + why);
-  if (s.integrator == IntegratorKind::Bdpt) {  // as lt, and perspective only (integrator_bdpt.h)
+  if (s.integrator == IntegratorKind::Bdpt || s.integrator == IntegratorKind::Vcm ||
+      s.integrator == IntegratorKind::Ppm) {  // as lt, and perspective only (integrator_bdpt.h, integrator_vcm.h)
     const Camera cam(*camera, s.width, s.height);
+    const std::string name = integrator_name(s.integrator);
     std::string why = cam.connect_problem();
-    if (why.empty() && cam.desc().kind != CameraKind::Perspective) why = "bdpt needs a perspective camera";
-    if (!why.empty()) kw.fail("camera", "cannot be used with integrator \"bdpt\": " + why);
+    if (why.empty() && cam.desc().kind != CameraKind::Perspective) why = name + " needs a perspective camera";
+    if (!why.empty()) kw.fail("camera", "cannot be used with integrator \"" + name + "\": " + why);
   }
   if (ctx.spp_override > 0) s.spp = ctx.spp_override;
   if (ctx.seed_override >= 0) s.seed = uint64_t(ctx.seed_override);

@@ -2,8 +2,9 @@
 -- Cornell Program of Computer Graphics). Units are millimetres; +x points to the image's left.
 --
 --   torte scenes/cornell-box.lua [width=512] [height=512] [spp=256] [max_depth=64]
---                                [integrator=path|direct|igi|lt|bdpt] [output=out/cornell-box.exr]
+--                                [integrator=path|direct|igi|lt|bdpt|vcm|ppm] [output=out/cornell-box.exr]
 --                                [vpl_sets=4] [light_paths=64] [g_limit=20] [vpl_roulette=0.25]   (igi only)
+--                                [radius=0.01] [alpha=0.75]   (vcm and ppm only)
 local torte = require "torte"
 
 local opt = torte.options{
@@ -11,6 +12,8 @@ local opt = torte.options{
   output = "out/cornell-box.exr", seed = 0,
   -- instant global illumination (integrator=igi); the defaults of torte.render
   vpl_sets = 4, light_paths = 64, g_limit = 20, vpl_roulette = 0.25,
+  -- vertex connection and merging, progressive photon mapping (integrator=vcm|ppm)
+  radius = 0.01, alpha = 0.75,
 }
 
 local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
@@ -21,6 +24,7 @@ local image = torte.render{
   width = opt.width, height = opt.height, spp = opt.spp, max_depth = opt.max_depth,
   integrator = opt.integrator, seed = opt.seed,
   vpl_sets = opt.vpl_sets, light_paths = opt.light_paths, g_limit = opt.g_limit, vpl_roulette = opt.vpl_roulette,
+  radius = opt.radius, alpha = opt.alpha,
   filter = torte.filter.box{radius = 0.5},
 }
 torte.save(image, opt.output)

@@ -89,29 +89,51 @@ void BdptConnector::load_densities(const BdptStore& light, const BdptStore& came
   }
 }
 
-double BdptConnector::mis_weight(int s, int t, bool light_delta) const {
-  if (s + t == 2) return 1;
+double BdptConnector::own_merge_term(int s) const {
+  if (!(rules_.eta > 0) || s < 2 || ld_[size_t(s - 1)]) return 0;
+  const double m = rules_.eta * double(remap0(lr_[size_t(s - 1)]));
+  return m * m;
+}
+
+double BdptConnector::mis_sum(int s, int t, bool light_delta) const {
   // Ratios of the other strategies' densities to this one's, built up one vertex at a time (pbrt's remapping:
-  // no product of densities is ever formed, so none overflows); squared for the power heuristic.
-  double sum = 0, r = 1;
+  // no product of densities is ever formed, so none overflows); squared for the power heuristic. Merging at
+  // the last light vertex of the connection strategy with sj light vertices has that strategy's density times
+  // eta times the camera subpath's density of that vertex (Georgiev et al. 2012, sec. 4.2); only sj >= 2.
+  const double eta = rules_.eta;
+  auto vc_on = [&](int sj) { return rules_.connect || sj == 0; };
+  auto merge_term = [&](double r, float pcam, int sj) {
+    if (!(eta > 0) || sj < 2) return 0.0;
+    const double m = eta * double(remap0(pcam));
+    return r * m * m;
+  };
+  double sum = (vc_on(s) ? 1.0 : 0.0) + own_merge_term(s), r = 1;
   for (int i = t - 1; i > 0; --i) {
     const double q = double(remap0(cr_[size_t(i)])) / double(remap0(cf_[size_t(i)]));
     r *= q * q;
-    if (!cd_[size_t(i)] && !cd_[size_t(i - 1)]) sum += r;
+    const int sj = s + t - i;
+    if (!cd_[size_t(i)] && !cd_[size_t(i - 1)] && vc_on(sj)) sum += r;
+    if (!cd_[size_t(i)]) sum += merge_term(r, cf_[size_t(i)], sj);
   }
   r = 1;
   for (int i = s - 1; i >= 0; --i) {
     const double q = double(remap0(lr_[size_t(i)])) / double(remap0(lf_[size_t(i)]));
     r *= q * q;
     const bool prev_delta = i > 0 ? bool(ld_[size_t(i - 1)]) : light_delta;
-    if (!ld_[size_t(i)] && !prev_delta) sum += r;
+    if (!ld_[size_t(i)] && !prev_delta && vc_on(i)) sum += r;
+    if (i >= 2 && !ld_[size_t(i - 1)]) sum += merge_term(r, lr_[size_t(i - 1)], i);
   }
-  return 1 / (1 + sum);
+  return sum;
 }
 
-void BdptConnector::connect(uint32_t path, const BdptStore& light, const BdptStore& camera, PathState& camera_paths,
-                            ShadowQueue& shadows, CameraQueue& splats) {
-  light.chain(path, lchain_);
+double BdptConnector::mis_weight(int s, int t, bool light_delta) const {
+  if (s + t == 2) return 1;
+  return 1 / mis_sum(s, t, light_delta);
+}
+
+void BdptConnector::connect(uint32_t path, const BdptStore& light, uint32_t light_path, const BdptStore& camera,
+                            PathState& camera_paths, ShadowQueue& shadows, CameraQueue& splats) {
+  light.chain(light_path, lchain_);
   camera.chain(path, cchain_);
   const int nl = int(lchain_.size()), nc = int(cchain_.size());
   for (int t = 1; t <= nc; ++t)
@@ -119,6 +141,7 @@ void BdptConnector::connect(uint32_t path, const BdptStore& light, const BdptSto
       const int depth = s + t - 2;
       if ((s == 1 && t == 1) || depth < 0 || depth > rules_.max_depth || (s >= 2 && s > nl)) continue;
       if (rules_.only_s >= 0 && (s != rules_.only_s || t != rules_.only_t)) continue;
+      if (!rules_.connect && s != 0) continue;
       strategy(s, t, path, light, camera, camera_paths, shadows, splats);
     }
 }
@@ -229,6 +252,44 @@ void BdptConnector::strategy(int s, int t, uint32_t path, const BdptStore& light
   if (t >= 3) cr_[tc - 1] = to_area_density(ev.rev, v.p, camera.vertices[cchain_[tc - 1]]);
   lr_[sl - 1] = to_area_density(eq.rev, q.p, light.vertices[lchain_[sl - 1]]);
   push_connection(shadows, v, w, q.p, value * float(mis_weight(s, t, light_delta)), path);
+}
+
+int BdptConnector::begin_merges(uint32_t path, const BdptStore& camera) {
+  camera.chain(path, cchain_);
+  return int(cchain_.size());
+}
+
+Rgb BdptConnector::merge(int tc, const BdptStore& camera, const BdptStore& photons, uint32_t photon) {
+  const BdptVertex& y = camera.vertices[cchain_[size_t(tc)]];
+  const BdptVertex& x = photons.vertices[photon];
+  lchain_.clear();
+  for (uint32_t v = photon; v != BdptVertex::kNone; v = photons.vertices[v].prev) lchain_.push_back(v);
+  std::reverse(lchain_.begin(), lchain_.end());
+  const int s = int(lchain_.size());  // the path as connection (s, tc): light vertices 0..s-1, camera 0..tc-1
+  if (s < 2 || tc < 1 || !y.connectible || !x.connectible || s + tc - 2 > rules_.max_depth) return Rgb(0);
+  // y's BSDF (radiance mode) towards the photon's incoming direction, without the cosine: the photon's
+  // throughput is already a flux per area.
+  const Frame frame = Frame::from_z(y.ns);
+  const Vec3f wo_l = frame.to_local(y.wo), wi_l = frame.to_local(x.wo);
+  if (!consistent_sides(y.ng, y.wo, x.wo, wo_l, wi_l)) return Rgb(0);
+  Rgb f;
+  float pdf = 0, rev = 0;
+  camera.with_bsdf(y, [&](const auto& b) {
+    f = b.eval(wo_l, wi_l);
+    pdf = b.pdf(wo_l, wi_l);
+    rev = b.pdf(wi_l, wo_l);
+  });
+  const Rgb value = y.beta * f * x.beta;
+  if (value.is_black() || !value.is_finite()) return Rgb(0);
+  load_densities(photons, camera);
+  const size_t sl = size_t(s - 1), c = size_t(tc - 1);
+  lr_[sl] = y.pdf_fwd;  // the camera subpath's density of the merged vertex
+  ld_[sl] = 0;
+  lr_[sl - 1] = to_area_density(pdf, x.p, photons.vertices[lchain_[sl - 1]]);
+  if (tc >= 2) cr_[c] = to_area_density(rev, y.p, camera.vertices[cchain_[c]]);
+  const bool light_delta = point_like(scene_.lights[size_t(photons.vertices[lchain_[0]].light)]);
+  const double w = own_merge_term(s) / mis_sum(s, tc, light_delta);
+  return value * float(w);
 }
 
 }  // namespace torte

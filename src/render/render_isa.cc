@@ -7,6 +7,7 @@
 #include "render/integrator_igi.h"
 #include "render/integrator_lt.h"
 #include "render/integrator_path.h"
+#include "render/integrator_vcm.h"
 
 #ifndef TORTE_RENDER_ISA
 #define TORTE_RENDER_ISA baseline
@@ -22,6 +23,8 @@ RenderOutput TORTE_RENDER_ISA(const Scene& scene, const Camera& camera, const Re
     case IntegratorKind::Igi: return render_igi(scene, camera, settings, progress, cancel);
     case IntegratorKind::Lt: return render_lt(scene, camera, settings, progress, cancel);
     case IntegratorKind::Bdpt: return render_bdpt(scene, camera, settings, progress, cancel);
+    case IntegratorKind::Vcm:
+    case IntegratorKind::Ppm: return render_vcm(scene, camera, settings, progress, cancel);
   }
   throw Error("internal: unknown integrator");
 }

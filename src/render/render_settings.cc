@@ -1,5 +1,7 @@
 #include "render/render_settings.h"
 
+#include <cmath>
+
 #include "core/error.h"
 
 namespace torte {
@@ -23,6 +25,9 @@ std::optional<SettingsProblem> find_settings_problem(const RenderSettings& s) {
     return SettingsProblem{"g_limit", "must be positive (relative to 1/R^2, R the scene's bounding radius; infinity "
                                       "disables the clamp)"};
   if (!(s.vpl_roulette >= 0 && s.vpl_roulette <= 1)) return SettingsProblem{"vpl_roulette", "must be in [0, 1]"};
+  if (!(s.merge_radius > 0) || !std::isfinite(s.merge_radius))
+    return SettingsProblem{"radius", "must be positive and finite (relative to the scene's bounding radius)"};
+  if (!(s.merge_alpha > 0 && s.merge_alpha <= 1)) return SettingsProblem{"alpha", "must be in (0, 1]"};
   return std::nullopt;
 }
 
@@ -32,9 +37,9 @@ void validate(const RenderSettings& s, const Camera& camera) {
     throw Error("the camera was made for a " + std::to_string(int(camera.image_width())) + "x" +
                 std::to_string(int(camera.image_height())) + " image, the settings ask for " + std::to_string(s.width) +
                 "x" + std::to_string(s.height));
-  if (s.integrator == IntegratorKind::Lt || s.integrator == IntegratorKind::Bdpt)
+  if (connects_to_camera(s.integrator))
     if (const std::string why = camera.connect_problem(); !why.empty())
-      throw Error(std::string("integrator '") + (s.integrator == IntegratorKind::Lt ? "lt" : "bdpt") + "': " + why);
+      throw Error(std::string("integrator '") + integrator_name(s.integrator) + "': " + why);
 }
 
 }  // namespace torte

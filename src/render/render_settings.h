@@ -19,10 +19,23 @@ enum class IntegratorKind : uint8_t {
   Igi,     // instant global illumination (render/integrator_igi.h): Direct plus indirect light from VPLs
   Lt,      // light tracing (render/integrator_lt.h): light paths connected to the camera and splatted
   Bdpt,    // bidirectional path tracing (render/integrator_bdpt.h): every (s, t) strategy, MIS-weighted
+  Vcm,     // vertex connection and merging (render/integrator_vcm.h): bdpt's strategies plus photon merging
+  Ppm,     // progressive photon mapping: vcm's merging only (render/integrator_vcm.h)
 };
 
 // Integrators whose light paths connect to the camera and splat (the film keeps a splat sum per pixel).
-inline bool splats_to_film(IntegratorKind k) { return k == IntegratorKind::Lt || k == IntegratorKind::Bdpt; }
+inline bool splats_to_film(IntegratorKind k) {
+  return k == IntegratorKind::Lt || k == IntegratorKind::Bdpt || k == IntegratorKind::Vcm || k == IntegratorKind::Ppm;
+}
+
+/// The name scenes select the integrator by (`integrator = "..."`).
+inline const char* integrator_name(IntegratorKind k) {
+  constexpr const char* names[] = {"path", "direct", "igi", "lt", "bdpt", "vcm", "ppm"};
+  return names[int(k)];
+}
+
+// Integrators whose light paths connect to the lens (the camera must allow it, Camera::connect_problem).
+inline bool connects_to_camera(IntegratorKind k) { return splats_to_film(k); }
 
 // Direct and Igi follow camera paths through specular chains only (the lighting they leave out is reached by
 // light sampling at every vertex, so torte.render{} samples all lights by default for them).
@@ -55,6 +68,9 @@ struct RenderSettings {
   int light_paths = 64;
   float g_limit = 20;
   float vpl_roulette = 0.25f;
+  // vcm and ppm only: see VcmSettings (render/integrator_vcm.h).
+  float merge_radius = 0.01f;
+  float merge_alpha = 0.75f;
   bool stage_stats = false;  // collect RenderStats::stages (torte --stats): one clock reading per stage call
   // Checkpoints and resuming (render/render_control.h); null: neither. Not part of what the image depends on.
   const struct RenderControl* control = nullptr;

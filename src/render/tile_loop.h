@@ -2,6 +2,7 @@
 //   void begin_pass(int first_sample, int pass_spp);  // serial, before the pass (IGI draws its VPLs here)
 //   std::unique_ptr<Worker> make_worker();             // one per thread; Worker::render(requests, film, stats)
 //   void finish(RenderStats&);                          // adds the driver's own counts (e.g. light-path rays)
+//   std::vector<int> passes(int spp);                   // optional: its own pass sizes (vcm: one sample each)
 // A Worker whose render takes a fourth argument, a SplatBuffer&, splats (light tracing): every tile gets its own
 // buffer, merged into the film in tile order as soon as the tiles before it are merged (so few buffers wait),
 // and the image adds the splat sums * width * height / (samples done): each sample stands for one light path.
@@ -153,7 +154,11 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
                        const std::atomic<bool>* cancel) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<detail::Tile> tiles = detail::make_tiles(settings.width, settings.height, settings.tile_size);
-  const std::vector<int> passes = detail::make_passes(settings.spp);
+  std::vector<int> passes;
+  if constexpr (requires { driver.passes(settings.spp); })
+    passes = driver.passes(settings.spp);
+  else
+    passes = detail::make_passes(settings.spp);
   Film film(settings.width, settings.height);
   using Worker = typename decltype(driver.make_worker())::element_type;
   using Slot = detail::Slot<Worker>;

@@ -1,0 +1,5 @@
+-- expect: torte.render: 'alpha' must be in (0, 1]
+local scene = torte.scene()
+scene:add(torte.shape.sphere{radius = 1, emission = 1})
+torte.render{scene = scene, camera = torte.camera.perspective{eye = {0, 0, -5}}, width = 4, height = 4, spp = 1,
+             integrator = "vcm", alpha = 1.5}
