@@ -13,7 +13,7 @@ local opt = torte.options{
   vpl_sets = 4, light_paths = 64, g_limit = 20, vpl_roulette = 0.25,
 }
 
-local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
+local script_dir = torte.script_dir  -- absolute: the paths below do not depend on the working directory
 local scene, camera = dofile(script_dir .. "/lib/cornell-box.lua")(torte)
 
 local image = torte.render{
