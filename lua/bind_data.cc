@@ -35,7 +35,6 @@
 #include "core/memory_budget.h"
 #include "core/text.h"
 #include "file_access.h"
-#include "runtime.h"
 #include "types.h"
 
 namespace torte::lua {
@@ -47,7 +46,7 @@ namespace {
 // list_dir(path) -> sorted array of the names in a directory (nil, message when it cannot be read).
 int l_list_dir(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) throw Error("torte.data.list_dir expects a directory name, got " + type_name(L, 1));
-  const std::string path = resolve_script_path(L, lua_tostring(L, 1));
+  const std::string path = lua_tostring(L, 1);
   check_read(L, path, "torte.data.list_dir");
   std::vector<std::string> names;
   std::error_code ec;
@@ -70,7 +69,7 @@ int l_list_dir(lua_State* L) {
 // read_file(path): the whole file (a regular file within the size bound of core/file_read.h) as a string.
 int l_read_file(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) throw Error("torte.data.read_file expects a file name, got " + type_name(L, 1));
-  const std::string path = resolve_script_path(L, lua_tostring(L, 1));
+  const std::string path = lua_tostring(L, 1);
   check_read(L, path, "torte.data.read_file");
   std::string data;
   try {

@@ -246,9 +246,16 @@ void interrupt_running_script() noexcept { interrupt_scripts(); }
 std::string resolve_script_path(lua_State* L, const std::string& path) {
   namespace fs = std::filesystem;
   if (path.empty() || fs::path(path).is_absolute()) return path;
-  const fs::path beside = fs::path(run_context(L).script_dir) / path;
+  lua_rawgetp(L, LUA_REGISTRYINDEX, &kContextKey);  // states without a run (tests) resolve as run from "."
+  const auto* ctx = lua_islightuserdata(L, -1) ? static_cast<const RunContext*>(lua_touserdata(L, -1)) : nullptr;
+  lua_pop(L, 1);
+  if (!ctx || ctx->script_dir.empty()) return path;
+  const fs::path beside = fs::path(ctx->script_dir) / path;
   std::error_code ec;
   if (!fs::exists(beside, ec) && fs::exists(path, ec)) return path;  // a command-line path, relative to the shell
+  // Run from the script's own directory both readings agree: keep the spelling the script used (for messages).
+  const fs::path here = fs::absolute(path, ec);
+  if (!ec && here.lexically_normal() == beside.lexically_normal()) return path;
   return beside.lexically_normal().string();
 }
 

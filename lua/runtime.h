@@ -68,8 +68,8 @@ void set_run_context(lua_State* L, RunContext* ctx);
 /// ("torte: interrupted while ...").
 int run_script(const RunOptions& options);
 
-/// A path a script gives a loader (torte.mesh.load, shape.mesh{file}, textures, environment maps, torte.data
-/// files): absolute paths and "" are returned as they are; a relative one resolves against the script's own
+/// A path a script gives a loader (torte.mesh.load, shape.mesh{file}, image textures, environment maps; not the
+/// file primitives of torte.data, which like io.open keep the working directory): absolute paths and "" are returned as they are; a relative one resolves against the script's own
 /// directory (torte.script_dir), or against the working directory when it names nothing there but something
 /// in the working directory (paths typed as scene arguments on the command line).
 std::string resolve_script_path(lua_State* L, const std::string& path);

@@ -168,11 +168,14 @@ int main(int argc, char** argv) {
                "run an untrusted script: no programs, C modules, environment or debug library; reads only below "
                "the script's directory, writes only below ./out and in the directory of output= "
                "(docs/security.md)");
+  // One directory per --allow-read or --allow-write (repeatable): a vector option would swallow the script too.
   app.add_option("--allow-read", options.allow_read, "with --sandbox: the script may also read below DIR (repeatable)")
-      ->option_text("DIR");
+      ->option_text("DIR")
+      ->allow_extra_args(false);
   app.add_option("--allow-write", options.allow_write,
                  "with --sandbox: the script may also write (and read) below DIR (repeatable)")
-      ->option_text("DIR");
+      ->option_text("DIR")
+      ->allow_extra_args(false);
   app.add_option("script", g.positionals, "the scene script, then its key=value arguments")
       ->option_text("scene.lua [key=value ...]");
 
@@ -191,7 +194,9 @@ int main(int argc, char** argv) {
     } else if (extra == "--") {
       after_separator = true;
     } else {
-      usage_error((extra.size() > 1 && extra[0] == '-' ? "unknown option '" : "unexpected argument '") + extra + "'");
+      const bool option = extra.size() > 1 && extra[0] == '-';
+      usage_error(option ? "unknown option '" + extra.substr(0, extra.find('=')) + "'"  // --name=value: the name
+                         : "unexpected argument '" + extra + "'");
     }
   }
 

@@ -83,6 +83,11 @@ TEST_CASE("cli11: options after the script and --opt=value", "[cli][cli11]") {
     CHECK_THAT(r.err, Catch::Contains("render 8x8, 2 spp"));
     CHECK_THAT(r.out, Catch::Contains("rays="));
   }
+  SECTION("repeated --allow-read take one directory each, before or after the script") {
+    const std::string ok = dir.write("ok.lua", "assert(torte.sandboxed())\n");
+    run_ok(dir, {"--sandbox", "--allow-read", dir.path.string(), "--allow-read=/tmp", ok});
+    run_ok(dir, {ok, "--sandbox", "--allow-read", dir.path.string(), "--allow-write", dir.path.string()});
+  }
   SECTION("-- ends the options: what follows is the script or a scene argument") {
     const std::string args = dir.write("args.lua", "print(torte.args['--spp'], torte.args.n)\n");
     CHECK(run_ok(dir, {"--", args, "n=1"}).out == "nil\t1\n");
@@ -219,7 +224,7 @@ TEST_CASE("cli11: loader paths resolve against the script's directory", "[cli][c
 print("script_dir=" .. torte.script_dir)
 local m = torte.mesh.load("tri.obj")             -- beside the script, whatever the working directory
 local s = torte.shape.mesh{file = "tri.obj"}
-assert(#torte.data.read_file("tri.obj") > 0)
+assert(#torte.data.read_file(torte.script_dir .. "/tri.obj") > 0)
 local ok, err = pcall(torte.mesh.load, "missing.obj")
 assert(not ok)
 print("missing: " .. err)
