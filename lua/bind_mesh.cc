@@ -12,6 +12,7 @@
 
 #include "core/memory_budget.h"
 #include "file_access.h"
+#include "runtime.h"
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_normals.h"
 #include "geometry/ply.h"
@@ -30,7 +31,7 @@ std::shared_ptr<TriangleMesh> check_mesh(lua_State* L, int idx, const char* fn) 
 
 int l_load(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) throw Error("torte.mesh.load expects a file name, got " + type_name(L, 1));
-  const std::string path = lua_tostring(L, 1);
+  const std::string path = resolve_script_path(L, lua_tostring(L, 1));
   check_read(L, path, "torte.mesh.load");
   TriangleMesh mesh;
   try {
@@ -162,7 +163,7 @@ std::shared_ptr<const TriangleMesh> mesh_argument(KwArgs& kw) {
   if (has_mesh) {
     mesh = kw.object<TriangleMesh>("mesh");
   } else {
-    const std::string path = kw.string("file");
+    const std::string path = resolve_script_path(kw.state(), kw.string("file"));
     check_read(kw.state(), path, kw.function().c_str());
     try {
       mesh = std::make_shared<const TriangleMesh>(load_mesh(path));

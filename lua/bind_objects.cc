@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "file_access.h"
+#include "runtime.h"
 #include "film/image_io.h"
 #include "geometry/mesh.h"
 #include "light/environment.h"
@@ -101,7 +102,7 @@ int l_directional(lua_State* L) {
 
 int l_environment(lua_State* L) {
   KwArgs kw(L, 1, "torte.light.environment");
-  const std::string file = kw.string("file");
+  const std::string file = resolve_script_path(L, kw.string("file"));
   check_read(L, file, "torte.light.environment");
   const Transform to_world = kw.transform("transform");
   const Rgb scale = kw.rgb("scale", Rgb(1));

@@ -16,17 +16,19 @@
 #include "progress.h"
 #include "render_metadata.h"
 #include "render/render_control.h"
+#include "render/render_isa.h"
 #include "render/render_settings.h"
+#include "runtime.h"
+#include "scene_stats.h"
 #include "script_limits.h"
+#include "simd/simd_target.h"
 #include "types.h"
 
 namespace torte::lua {
 
-namespace {
-
-// The scene flattened and built for rendering. Unless quiet, a thread shows the build's progress on stderr
-// (ConsoleProgress: a bar on a terminal, a line per 10 % otherwise, nothing for builds under a second), polling the
-// builders' counter ten times a second; a 28 M-triangle scene takes several seconds.
+// Unless quiet, a thread shows the build's progress on stderr (ConsoleProgress: a bar on a terminal, a line per
+// 10 % otherwise, nothing for builds under a second), polling the builders' counter ten times a second; a
+// 28 M-triangle scene takes several seconds.
 std::shared_ptr<Scene> build_scene(const SceneBuilder& scene, bool quiet) {
   if (quiet) return scene.flatten();
   ProgressCounter counter;
@@ -62,6 +64,8 @@ std::shared_ptr<Scene> build_scene(const SceneBuilder& scene, bool quiet) {
     throw;
   }
 }
+
+namespace {
 
 int l_scene(lua_State* L) {
   push_object(L, std::make_shared<SceneBuilder>());
@@ -209,12 +213,13 @@ void print_summary(const RenderedImage& img, const RenderSettings& s) {
   std::snprintf(reused, sizeof reused, "%.2f ms (scene unchanged, reused)", img.build_seconds * 1e3);
   std::fprintf(stderr,
                "render %dx%d, %d spp%s: build %s, render %s; %.1f M rays (camera %.1f M, extension %.1f M, shadow "
-               "%.1f M), %.2f Mrays/s; %llu NaN/Inf samples dropped\n",
+               "%.1f M), %.2f Mrays/s; %llu NaN/Inf samples dropped; SIMD %s (render loop %s)\n",
                s.width, s.height, s.spp, st.interrupted ? " (INTERRUPTED: partial image)" : "",
                img.scene_reused ? reused : format_duration(img.build_seconds).c_str(),
                format_duration(st.render_seconds).c_str(),
                double(st.rays()) * 1e-6, double(st.camera_rays) * 1e-6, double(st.extension_rays) * 1e-6,
-               double(st.shadow_rays) * 1e-6, mrays, static_cast<unsigned long long>(st.dropped_samples));
+               double(st.shadow_rays) * 1e-6, mrays, static_cast<unsigned long long>(st.dropped_samples),
+               simd::current_target().c_str(), render_isa::selected_name());
   if (st.units > 0)
     std::fprintf(stderr, "distributed over %d ranks: %.1f %% of the %llu units (tile, pass) rendered by ranks 1-%d\n",
                  dist::ranks(), 100.0 * double(st.remote_units) / double(st.units),
@@ -349,6 +354,15 @@ int l_render(lua_State* L) {
     if (why.empty() && cam.desc().kind != CameraKind::Perspective) why = name + " needs a perspective camera";
     if (!why.empty()) kw.fail("camera", "cannot be used with integrator \"" + name + "\": " + why);
   }
+  if (ctx.list_args) {  // --list-args and the script renders before it calls torte.options: it declares none
+    lua_newtable(L);
+    list_arguments(L, lua_gettop(L));
+  }
+  if (ctx.quick) {  // --quick (runtime.h)
+    s.width = (s.width + kQuickDivisor - 1) / kQuickDivisor;
+    s.height = (s.height + kQuickDivisor - 1) / kQuickDivisor;
+    s.spp = std::min(s.spp, kQuickSpp);
+  }
   if (ctx.spp_override > 0) s.spp = ctx.spp_override;
   if (ctx.seed_override >= 0) s.seed = uint64_t(ctx.seed_override);
   if (ctx.interrupted || interrupt_requested()) throw Interrupted("interrupted: torte.render was not started");
@@ -414,6 +428,8 @@ int l_render(lua_State* L) {
   if (!ctx.quiet) print_scene_summary(flat);
   // --quiet still reports a stopped render; in a distributed one only rank 0 speaks for the frame.
   if (!ctx.quiet || (out.stats.interrupted && dist::rank() == 0)) print_summary(*img, s);
+  if (ctx.stats)  // --stats: the scene's statistics before the stage table
+    std::fputs(format_scene_statistics(scene_statistics(flat, build_seconds, built.reused)).c_str(), stderr);
   if (ctx.stats) std::fputs(format_stage_table(out.stats.stages, out.stats.render_seconds).c_str(), stderr);
   if (out.stats.dropped_samples > 0 && ctx.quiet)
     std::fprintf(stderr, "warning: %llu NaN/Inf samples were dropped\n",
@@ -563,6 +579,8 @@ void open_render(lua_State* L, int torte_index) {
   lua_setfield(L, -2, "add");
   lua_pushcfunction(L, guarded<scene_frame>);
   lua_setfield(L, -2, "frame");
+  lua_pushcfunction(L, guarded<scene_stats>);  // lua/scene_stats.h
+  lua_setfield(L, -2, "stats");
   lua_setfield(L, -2, "__index");
   lua_pop(L, 2);
 

@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "file_access.h"
+#include "runtime.h"
 #include "texture/image_texture_oiio.h"
 #include "texture_param.h"
 #include "types.h"
@@ -204,7 +205,7 @@ int l_turbulence(lua_State* L) {
 
 int l_image(lua_State* L) {
   KwArgs kw = kwargs(L, "torte.texture.image");
-  const std::string file = kw.string("file");
+  const std::string file = resolve_script_path(L, kw.string("file"));
   check_read(L, file, "torte.texture.image");
   ImageTextureOptions o;
   const std::string wrap = kw.string("wrap", "periodic");

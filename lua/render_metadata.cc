@@ -3,6 +3,8 @@
 #include <array>
 #include <cstdio>
 
+#include "render/render_isa.h"
+#include "simd/simd_target.h"
 #include "traverse.h"
 
 namespace torte::lua {
@@ -38,7 +40,11 @@ std::vector<ImageAttribute> render_attributes(const RenderSettings& s, const std
   a.push_back({"torte:seed", std::to_string(s.seed)});
   a.push_back({"torte:render_seconds", float(stats.render_seconds)});
   a.push_back({"torte:camera", describe_camera(camera)});
-  a.push_back({"torte:simd_target", std::string(traversal_target_name())});
+  // The target chosen by --simd or torte.simd.use (the best the CPU runs by default), what Highway dispatched the
+  // traversal kernels to, and the render loop's copy (render/render_isa.h).
+  a.push_back({"torte:simd_target", simd::current_target()});
+  a.push_back({"torte:highway_target", std::string(traversal_target_name())});
+  a.push_back({"torte:render_isa", std::string(render_isa::selected_name())});
   if (stats.interrupted) a.push_back({"torte:interrupted", std::string("partial image: the render was interrupted")});
   // EXR's worldToCamera: row vectors (p' = p M), so the transpose of torte's column-vector world-to-camera.
   const Mat4& w2c = camera.camera_to_world.inverse_matrix();

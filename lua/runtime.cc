@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 #include <string_view>
 
@@ -133,6 +134,15 @@ int lua_panic(lua_State* L) {
   std::_Exit(kExitError);
 }
 
+// The script's directory, absolute (so paths a script builds from torte.script_dir do not depend on the working
+// directory); "" without a script (tests and fuzz harnesses that run chunks).
+std::string script_directory(const std::string& script) {
+  if (script.empty()) return {};
+  std::error_code ec;
+  const std::filesystem::path p = std::filesystem::absolute(script, ec);
+  return (ec ? std::filesystem::path(script) : p).parent_path().lexically_normal().string();
+}
+
 int l_sandboxed(lua_State* L) {
   lua_pushvalue(L, lua_upvalueindex(1));
   return 1;
@@ -158,6 +168,7 @@ int run_protected(lua_State* L) {
   lua_getglobal(L, "require");
   lua_pushstring(L, "torte.prelude");
   lua_call(L, 1, 0);
+  make_api_strict(L);  // after the prelude, which adds torte.options and torte.save
   if (load_text_file(L, run.options->script.c_str()) != LUA_OK) return lua_error(L);
   lua_getglobal(L, "torte");
   lua_getfield(L, -1, "args");
@@ -199,6 +210,7 @@ void open_torte_module(lua_State* L, const RunOptions& options) {
   open_textures(L, torte_index);
   open_voxels(L, torte_index);
   open_data(L, torte_index);
+  open_run(L, torte_index, script_directory(options.script), options.quick, options.list_args);
   // `torte` is a global and also what require "torte" returns.
   lua_pushvalue(L, torte_index);
   lua_setglobal(L, "torte");
@@ -230,6 +242,22 @@ RunContext& run_context(lua_State* L) {
 }
 
 void interrupt_running_script() noexcept { interrupt_scripts(); }
+
+std::string resolve_script_path(lua_State* L, const std::string& path) {
+  namespace fs = std::filesystem;
+  if (path.empty() || fs::path(path).is_absolute()) return path;
+  lua_rawgetp(L, LUA_REGISTRYINDEX, &kContextKey);  // states without a run (tests) resolve as run from "."
+  const auto* ctx = lua_islightuserdata(L, -1) ? static_cast<const RunContext*>(lua_touserdata(L, -1)) : nullptr;
+  lua_pop(L, 1);
+  if (!ctx || ctx->script_dir.empty()) return path;
+  const fs::path beside = fs::path(ctx->script_dir) / path;
+  std::error_code ec;
+  if (!fs::exists(beside, ec) && fs::exists(path, ec)) return path;  // a command-line path, relative to the shell
+  // Run from the script's own directory both readings agree: keep the spelling the script used (for messages).
+  const fs::path here = fs::absolute(path, ec);
+  if (!ec && here.lexically_normal() == beside.lexically_normal()) return path;
+  return beside.lexically_normal().string();
+}
 
 // Prints the one line for a failed lua_pcall of the script and returns the exit code: 130 for a run ended by
 // Ctrl-C ("torte: interrupted ..."), else 1 ("torte: error: ...").
@@ -283,6 +311,9 @@ int run_script(const RunOptions& options) {
   ctx.checkpoint = options.checkpoint;
   ctx.resume = options.resume;
   ctx.checkpoint_every = options.checkpoint_every;
+  ctx.quick = options.quick;
+  ctx.list_args = options.list_args;
+  ctx.script_dir = script_directory(options.script);
   std::optional<FilePolicy> policy;
   if (options.sandbox) {
     try {
@@ -308,7 +339,11 @@ int run_script(const RunOptions& options) {
   if (status != LUA_OK) {
     // What the failed script held is garbage now; after a refusal of memory the report needs some.
     lua_gc(L, LUA_GCCOLLECT);
-    code = report_failure(L, status, options, limits);
+    code = ctx.args_listed ? kExitOk : report_failure(L, status, options, limits);
+  }
+  // --list-args stops the script at torte.options (the error above is its way out) or at its first render.
+  if (options.list_args && !ctx.args_listed && code == kExitOk) {
+    std::printf("this scene declares no arguments (torte.options)\n");
   }
   if ((ctx.interrupted || interrupt_requested()) && code == kExitOk) code = kExitInterrupted;
   lua_close(L);  // finalizers may run Lua code: the limits still apply

@@ -38,7 +38,15 @@ struct RunOptions {
   // limit), 0 no limit.
   int64_t lua_instructions = -1;
   uint64_t lua_memory = 0;  // bytes the Lua heap may hold; 0: the default, half of torte::memory_limit()
+  std::string outfile;     // -o/--outfile (main also passes it as the scene argument output=)
+  bool quick = false;      // --quick: renders at a quarter of the size and at most kQuickSpp (torte.quick)
+  bool list_args = false;  // --list-args: the script stops at torte.options, which prints its arguments
 };
+
+/// --quick: every torte.render's width and height divided by kQuickDivisor (rounded up) and spp at most kQuickSpp
+/// (an explicit --spp still wins).
+inline constexpr int kQuickDivisor = 4;
+inline constexpr int kQuickSpp = 4;
 
 /// The instruction budget of --sandbox unless --lua-instructions says otherwise: about 85 times what the
 /// busiest shipped scene runs (minecraft.lua on the largest shipped world; docs/security.md has the numbers),
@@ -59,6 +67,12 @@ void set_run_context(lua_State* L, RunContext* ctx);
 /// <file>:<line>: <message>"; a run ended by Ctrl-C exits with kExitInterrupted and at most one line
 /// ("torte: interrupted while ...").
 int run_script(const RunOptions& options);
+
+/// A path a script gives a loader (torte.mesh.load, shape.mesh{file}, image textures, environment maps; not the
+/// file primitives of torte.data, which like io.open keep the working directory): absolute paths and "" are returned as they are; a relative one resolves against the script's own
+/// directory (torte.script_dir), or against the working directory when it names nothing there but something
+/// in the working directory (paths typed as scene arguments on the command line).
+std::string resolve_script_path(lua_State* L, const std::string& path);
 
 /// For the SIGINT handler, after torte::request_interrupt(): makes the running script stop at its next Lua
 /// instruction (lua/script_limits.h; a render that is running stops between tiles by itself). Async-signal-safe.

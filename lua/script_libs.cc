@@ -200,8 +200,8 @@ void sandbox_libraries(lua_State* L) {
     lua_pop(L, 1);
   }
   lua_pop(L, 1);
-  // debug: what the shipped scenes use to find their own directory (debug.getinfo(1, "S").source), and
-  // traceback; nothing that changes a value or reaches the registry.
+  // debug: getinfo (older scenes found their own directory with debug.getinfo(1, "S").source; torte.script_dir
+  // says it now) and traceback; nothing that changes a value or reaches the registry.
   lua_newtable(L);
   if (lua_getglobal(L, "debug") == LUA_TTABLE) {
     for (const char* keep : {"getinfo", "traceback"}) {

@@ -64,6 +64,10 @@ struct RunContext {
   const std::atomic<bool>* cancel = nullptr;  // set by Ctrl-C
   std::string checkpoint, resume;              // --checkpoint, --resume (render/render_control.h)
   double checkpoint_every = 60;                // --checkpoint-every
+  bool quick = false;           // --quick (runtime.h: kQuickDivisor, kQuickSpp)
+  bool list_args = false;       // --list-args: torte.options prints the arguments and stops the script
+  bool args_listed = false;     // ... and did: the error that stopped the script is a clean exit
+  std::string script_dir;       // the script's directory, absolute (torte.script_dir, resolve_script_path)
   bool interrupted = false;     // a render was cut short: later renders are refused
   // Totals over the run, for the closing summary.
   double build_seconds = 0, render_seconds = 0, write_seconds = 0;
@@ -83,6 +87,17 @@ void open_meshes(lua_State* L, int torte_index);     // torte.mesh.*, torte.cloc
 void open_textures(lua_State* L, int torte_index);   // torte.texture.* (lua/bind_texture.cc)
 void open_voxels(lua_State* L, int torte_index);     // torte.voxel.*, torte.shape.voxels (lua/bind_voxel.cc)
 void open_data(lua_State* L, int torte_index);       // torte.data.*: files, zlib/gzip, NBT, bit fields (lua/bind_data.cc)
+// torte.simd.*, torte.script_dir, torte.quick, under --list-args torte._list_args (lua/bind_run.cc).
+/// The scene flattened and built for rendering, with a progress display on stderr unless `quiet`
+/// (lua/bind_render.cc; torte.render and scene:stats build through the run's scene cache with it).
+std::shared_ptr<Scene> build_scene(const SceneBuilder& scene, bool quiet);
+void open_run(lua_State* L, int torte_index, const std::string& script_dir, bool quick, bool list_args);
+/// After the prelude: indexing a missing name of torte or of its tables of functions (torte.material, ...) is
+/// an error "torte.material has no 'plastik' (known: ...)" instead of a nil that fails later (lua/bind_run.cc).
+void make_api_strict(lua_State* L);
+/// --list-args: prints the scene's arguments (the defaults table at `index`: name, default, type) on stdout,
+/// marks the run as listed and stops the script with an error run_script turns into exit code 0.
+[[noreturn]] void list_arguments(lua_State* L, int index);
 void set_data_lz4_functions(lua_State* L);  // lz4_block, lz4_compress, xxhash32 into the table on top of the stack
 // unpack_bits into the table on top of the stack, and the torte.data.longs metatable (lua/bind_data_longs.cc).
 void set_data_longs_functions(lua_State* L);

@@ -16,7 +16,7 @@ local opt = torte.options{
   radius = 0.01, alpha = 0.75,
 }
 
-local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
+local script_dir = torte.script_dir  -- absolute: the paths below do not depend on the working directory
 local scene, camera = dofile(script_dir .. "/lib/cornell-box.lua")(torte)
 
 local image = torte.render{

@@ -7,7 +7,7 @@
 --                                 [output=out/dragon-bench.exr]
 local torte = require "torte"
 
-local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
+local script_dir = torte.script_dir  -- absolute: the paths below do not depend on the working directory
 local opt = torte.options{
   width = 256, height = 256, spp = 64, max_depth = 64, seed = 0,
   data = script_dir .. "/../../shared/data/meshes", output = "out/dragon-bench.exr",

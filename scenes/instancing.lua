@@ -7,7 +7,7 @@
 --                               [integrator=path|direct|lt] [data=<meshes directory>] [output=out/instancing.exr]
 local torte = require "torte"
 
-local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
+local script_dir = torte.script_dir  -- absolute: the paths below do not depend on the working directory
 local opt = torte.options{
   levels = 4, width = 800, height = 500, spp = 32, max_depth = 6, integrator = "path", seed = 0,
   data = script_dir .. "/../../shared/data/meshes", output = "out/instancing.exr",

@@ -19,7 +19,7 @@
 local torte = require "torte"
 
 -- This script's directory, so the default data path works from any current directory.
-local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
+local script_dir = torte.script_dir  -- absolute: the paths below do not depend on the working directory
 
 local opt = torte.options{
   levels = 4, displacement = 0.05, companions = true, mesh = "", data = script_dir .. "/../../shared/data/meshes",

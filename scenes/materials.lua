@@ -9,7 +9,7 @@
 -- the directory and `mesh` the model. Without it the scene falls back to spheres, with a message.
 local torte = require "torte"
 
-local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
+local script_dir = torte.script_dir  -- absolute: the paths below do not depend on the working directory
 
 local opt = torte.options{
   width = 960, height = 360, spp = 64, max_depth = 12, integrator = "path", seed = 0,

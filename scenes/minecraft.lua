@@ -23,7 +23,7 @@ local torte = require "torte"
 local world = require "minecraft.world"
 local blocks = require "minecraft.blocks"
 
-local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
+local script_dir = torte.script_dir  -- absolute: the paths below do not depend on the working directory
 local data_dir = script_dir .. "/../../shared/data/minecraft"
 
 local opt = torte.options{

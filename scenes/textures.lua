@@ -6,7 +6,7 @@
 --                             [data=<meshes directory>] [output=out/textures.exr]
 local torte = require "torte"
 
-local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
+local script_dir = torte.script_dir  -- absolute: the paths below do not depend on the working directory
 local opt = torte.options{
   width = 800, height = 450, spp = 64, max_depth = 8, integrator = "path", seed = 0,
   data = script_dir .. "/../../shared/data/meshes", output = "out/textures.exr",

@@ -11,6 +11,8 @@ end
 -- The script's command-line arguments (key=value) merged over `defaults`. An argument the scene does not
 -- declare, or one of the wrong type, is an error at the caller's line.
 function torte.options(defaults)
+  local list = rawget(torte, "_list_args")  -- torte --list-args: print the arguments and stop the script here
+  if list then list(defaults) end
   local out = {}
   for k, v in pairs(defaults) do out[k] = v end
   -- In key order, so that of several bad arguments the same one is reported on every run.

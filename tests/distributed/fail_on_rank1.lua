@@ -2,6 +2,6 @@
 -- exit and one line naming the rank and its message (tests/distributed/run.sh failing-rank).
 local torte = require "torte"
 if torte.rank == 1 then error("rank one refuses to render") end
-local script_dir = (debug.getinfo(1, "S").source:match("^@(.*)[/\\]") or ".")
+local script_dir = torte.script_dir
 local scene, camera = dofile(script_dir .. "/../../scenes/lib/cornell-box.lua")(torte)
 torte.save(torte.render{scene = scene, camera = camera, width = 64, height = 64, spp = 64}, "out/never.exr")

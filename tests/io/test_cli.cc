@@ -124,7 +124,8 @@ TEST_CASE("cli: --help and --version", "[cli]") {
     check_no_crash(r);
     CHECK(r.code == 0);
     INFO("stdout: " << r.out);
-    CHECK(std::regex_match(r.out, std::regex("torte [0-9]+\\.[0-9]+(\\.[0-9]+)?.*\n")));
+    // The first line; the lines after it are tested in test_cli11.cc.
+    CHECK(std::regex_match(r.out.substr(0, r.out.find('\n') + 1), std::regex("torte [0-9]+\\.[0-9]+(\\.[0-9]+)?.*\n")));
     CHECK(r.err.empty());
   }
   SECTION("the version is torte.version") {
@@ -135,7 +136,7 @@ TEST_CASE("cli: --help and --version", "[cli]") {
     check_no_crash(r);
     CHECK(r.code == 0);
     const Result v = run(dir, {"--version"});
-    CHECK(v.out == "torte " + r.out);
+    CHECK(v.out.substr(0, v.out.find('\n') + 1) == "torte " + r.out);
   }
 }
 
@@ -170,7 +171,7 @@ TEST_CASE("cli: bad option values and a missing script", "[cli]") {
   }
   SECTION("--spp without a value") {
     const std::string line = check_usage_error(run(dir, {script, "--spp"}));
-    // After the script name everything is a scene argument, so this is a bad key=value.
+    // Options may follow the script (CLI11): this --spp lacks its value.
     CHECK_THAT(line, Catch::Contains("--spp"));
   }
   SECTION("--spp with a bad value") {
