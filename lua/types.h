@@ -93,6 +93,8 @@ int64_t* new_longs(lua_State* L, size_t n);
 constexpr uint64_t kDefaultDecompressLimit = uint64_t(256) << 20;
 // The optional output limit argument at `idx` of decompressor `fn`: kDefaultDecompressLimit when nil.
 uint64_t decompress_limit(lua_State* L, int idx, const char* fn);
+/// Pushes a torte transform (userdata with `*`, :inverse() and :point()).
+void push_transform(lua_State* L, const Transform& t);
 // torte.shape.mesh's mesh=<torte.mesh> or file="path" (loaded now); nullptr when neither key is given.
 std::shared_ptr<const TriangleMesh> mesh_argument(KwArgs& kw);
 
