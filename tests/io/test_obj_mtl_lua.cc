@@ -138,3 +138,49 @@ assert(sum / 256 > 0.05, "the box is lit")
   CHECK(r.err.find("; 0 lights") == std::string::npos);
   CHECK(r.err.find("warning") == std::string::npos);
 }
+
+TEST_CASE("obj mtl lua: textures, bump maps and mesh:fit", "[obj_mtl]") {
+  ObjDir dir("fit");
+  dir.write("t.obj", "mtllib t.mtl\nv 0 0 0\nv 4 0 0\nv 4 2 0\nv 0 2 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                     "usemtl tex\nf 1/1 2/2 3/3 4/4\n");
+  dir.write("t.mtl", "newmtl tex\nKd 0.3 0.3 0.3\nmap_Kd half.ppm\nmap_Bump -bm 0.01 half.ppm\n");
+  dir.write("half.ppm", "P3\n2 1\n255\n0 0 0 255 255 255\n");  // u < 0.5 black, u > 0.5 white
+  const std::string script = dir.write("scene.lua", R"(
+local scene = torte.scene()
+scene:add(torte.shape.mesh{file = "t.obj"})
+scene:add(torte.light.infinite{radiance = 1})
+local camera = torte.camera.perspective{eye = {2, 1, -5}, look_at = {2, 1, 0}, fov = 20}
+local img = torte.render{scene = scene, camera = camera, width = 16, height = 8, spp = 16}
+-- World x > 2 (u > 0.5, white texels) is on the image's left; the map replaces Kd 0.3.
+local white, black = img:pixel(3, 4), img:pixel(12, 4)
+assert(white > 0.8 and white < 1.1 and black < 0.05, "texture: " .. white .. " " .. black)
+local mesh, mats = torte.mesh.load("t.obj")
+assert(mats.tex.mesh.has_uvs)
+-- fit: 1 tall standing at {1, 0, 2}: x spans 2 (4 / 2), y [0, 1]
+local T = mesh:fit{height = 1, center = {1, 0, 2}, floor = true}
+local p = T:point{0, 0, 0}
+assert(math.abs(p[1] - 0) < 1e-6 and math.abs(p[2] - 0) < 1e-6 and math.abs(p[3] - 2) < 1e-6, table.concat(p, " "))
+local q = T:point{4, 2, 0}
+assert(math.abs(q[1] - 2) < 1e-6 and math.abs(q[2] - 1) < 1e-6, table.concat(q, " "))
+local c = mesh:fit{size = 2}:point{2, 1, 0}
+assert(math.abs(c[1]) < 1e-6 and math.abs(c[2]) < 1e-6, "centred")
+local w = mesh:fit{width = 8}:point{4, 0, 0}
+assert(math.abs(w[1] - 4) < 1e-6, "width 8 scales x (the larger of x and z) by 2 about the centre: " .. w[1])
+assert((torte.translate(1, 0, 0) * T):point{0, 0, 0}[1] == 1, "fit composes")
+for _, bad in ipairs{function() return mesh:fit{height = 1, width = 1} end,
+                     function() return mesh:fit{height = -1} end,
+                     function() return mesh:fit{size = 1, centre = {0, 0, 0}} end} do
+  assert(not pcall(bad))
+end
+local ok, msg = pcall(function() return mesh:fit{height = 1, width = 1} end)
+assert(msg:find("cannot be combined", 1, true), msg)
+ok, msg = pcall(function() return torte.mesh.load("t.obj"):fit{size = 1, depth = 1} end)
+assert(msg:find("'depth'", 1, true), msg)
+print("ok")
+)");
+  const Result r = run(dir, {"--quiet", script});
+  INFO("stderr: " << r.err);
+  CHECK(r.code == 0);
+  CHECK(r.out == "ok\n");
+  CHECK(r.err.find("warning") == std::string::npos);
+}
