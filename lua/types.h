@@ -80,6 +80,7 @@ void open_cameras(lua_State* L, int torte_index);    // torte.camera.*
 void open_render(lua_State* L, int torte_index);     // torte.scene, torte.render, torte.filter.*, images
 void open_images(lua_State* L, int torte_index);     // torte.denoise (lua/bind_image.cc)
 void open_meshes(lua_State* L, int torte_index);     // torte.mesh.*, torte.clock
+void open_gltf(lua_State* L, int torte_index);       // torte.gltf.load (lua/bind_gltf.cc)
 void open_textures(lua_State* L, int torte_index);   // torte.texture.* (lua/bind_texture.cc)
 void open_voxels(lua_State* L, int torte_index);     // torte.voxel.*, torte.shape.voxels (lua/bind_voxel.cc)
 void open_data(lua_State* L, int torte_index);       // torte.data.*: files, zlib/gzip, NBT, bit fields (lua/bind_data.cc)
