@@ -1,16 +1,43 @@
 // torte.shape.* constructors and transforms (torte.translate, torte.scale, torte.rotate, torte.matrix; `*`
 // composes, applying the right operand first).
+#include <algorithm>
 #include <cmath>
 
+#include "file_access.h"
 #include "geometry/mesh.h"
+#include "obj_import.h"
 #include "origin.h"
 #include "types.h"
 
 namespace torte::lua {
 
 namespace {
+int transform_mul(lua_State* L);
+int transform_inverse(lua_State* L);
+int transform_apply(lua_State* L);
+}  // namespace
 
-void push_transform(lua_State* L, const Transform& t);
+void push_transform(lua_State* L, const Transform& t) {
+  push_object(L, std::make_shared<Transform>(t));
+  if (lua_getmetatable(L, -1)) {
+    lua_getfield(L, -1, "__mul");
+    const bool has = !lua_isnil(L, -1);
+    lua_pop(L, 1);
+    if (!has) {
+      lua_pushcfunction(L, guarded<transform_mul>);
+      lua_setfield(L, -2, "__mul");
+      lua_newtable(L);
+      lua_pushcfunction(L, guarded<transform_inverse>);
+      lua_setfield(L, -2, "inverse");
+      lua_pushcfunction(L, guarded<transform_apply>);
+      lua_setfield(L, -2, "point");
+      lua_setfield(L, -2, "__index");
+    }
+    lua_pop(L, 1);
+  }
+}
+
+namespace {
 
 bool is_finite_transform(const Transform& t) {
   for (const auto& row : t.matrix().m)
@@ -45,26 +72,6 @@ int transform_apply(lua_State* L) {  // t:point{x,y,z} -> {x,y,z}
     lua_rawseti(L, -2, i + 1);
   }
   return 1;
-}
-
-void push_transform(lua_State* L, const Transform& t) {
-  push_object(L, std::make_shared<Transform>(t));
-  if (lua_getmetatable(L, -1)) {
-    lua_getfield(L, -1, "__mul");
-    const bool has = !lua_isnil(L, -1);
-    lua_pop(L, 1);
-    if (!has) {
-      lua_pushcfunction(L, guarded<transform_mul>);
-      lua_setfield(L, -2, "__mul");
-      lua_newtable(L);
-      lua_pushcfunction(L, guarded<transform_inverse>);
-      lua_setfield(L, -2, "inverse");
-      lua_pushcfunction(L, guarded<transform_apply>);
-      lua_setfield(L, -2, "point");
-      lua_setfield(L, -2, "__index");
-    }
-    lua_pop(L, 1);
-  }
 }
 
 // Accepts (x, y, z), ({x, y, z}) or, if allow_scalar, (s) meaning (s, s, s).
@@ -201,11 +208,28 @@ int l_polygon(lua_State* L) {
   return push_mesh_shape(L, std::move(s), make_polygon(vs), fn);
 }
 
-// mesh{positions=..., indices=... (0-based), normals=?, uvs=?}, or mesh{mesh=<torte.mesh>} / mesh{file="path"}
+// mesh{positions=..., indices=... (0-based), normals=?, uvs=?}, or mesh{mesh=<torte.mesh>} / mesh{file="path"}.
+// An OBJ file with usemtl statements and no material= gives an array of shapes, one per MTL material.
 int l_mesh(lua_State* L) {
   const char* fn = "torte.shape.mesh";
   KwArgs kw(L, 1, fn);
   ShapeDesc s = common_shape(kw);
+  if (!s.material && !kw.has("mesh") && kw.has("file") && is_obj_path(kw.string("file"))) {
+    // An OBJ file without a material from the script: its MTL materials, one shape per material (an array,
+    // which scene:add takes like a shape); its Ke makes area lights unless the script gives an emission.
+    const std::string path = kw.string("file");
+    kw.finish();
+    check_read(L, path, fn);
+    const ObjData data = load_obj_file(path, fn);
+    if (data.mesh.triangle_count() == 0) kw.fail("file", "has no triangles");
+    const bool has_materials = std::any_of(data.triangle_material.begin(), data.triangle_material.end(),
+                                           [](int32_t m) { return m >= 0; });
+    if (has_materials) {
+      push_obj_shapes(L, data, s, s.emission.is_black(), fn);
+      return 1;
+    }
+    return push_mesh_shape(L, std::move(s), data.mesh, fn);
+  }
   if (auto shared = mesh_argument(kw)) {  // shared, not copied: meshes are never changed after creation
     kw.finish();
     s.kind = ShapeDesc::Kind::Mesh;

@@ -17,6 +17,7 @@
 #include "geometry/mesh_normals.h"
 #include "geometry/ply.h"
 #include "geometry/subdivide.h"
+#include "obj_import.h"
 #include "types.h"
 
 namespace torte::lua {
@@ -33,6 +34,13 @@ int l_load(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) throw Error("torte.mesh.load expects a file name, got " + type_name(L, 1));
   const std::string path = resolve_script_path(L, lua_tostring(L, 1));
   check_read(L, path, "torte.mesh.load");
+  if (is_obj_path(path)) {  // the mesh, then its materials (lua/obj_import.h)
+    ObjData data = load_obj_file(path, "torte.mesh.load");
+    push_obj_materials(L, data, "torte.mesh.load");
+    push_object(L, std::make_shared<TriangleMesh>(std::move(data.mesh)));
+    lua_insert(L, -2);
+    return 2;
+  }
   TriangleMesh mesh;
   try {
     mesh = load_mesh(path);
@@ -97,6 +105,39 @@ int mesh_bounds(lua_State* L) {
   return 2;
 }
 
+// mesh:fit{height = h | width = w | size = s, center = {x, y, z}, floor = false}: the transform that scales the
+// mesh uniformly (height: its y extent; width: the larger of its x and z extents; size: its largest extent) and
+// moves its bounds' centre to `center`, or, with floor = true, its bounds' bottom centre (the lowest y) there.
+int mesh_fit(lua_State* L) {
+  const char* fn = "torte.mesh.fit";
+  auto mesh = check_mesh(L, 1, fn);
+  if (lua_isnoneornil(L, 2)) {
+    lua_settop(L, 1);
+    lua_newtable(L);
+  }
+  KwArgs kw(L, 2, fn);
+  const int given = int(kw.has("height")) + int(kw.has("width")) + int(kw.has("size"));
+  if (given > 1) kw.fail("height", "cannot be combined with 'width' or 'size' (give one)");
+  const char* key = kw.has("width") ? "width" : kw.has("size") ? "size" : "height";
+  const double target = kw.number(key, 1);
+  const Vec3f center = kw.vec3("center", Vec3f(0, 0, 0));
+  const bool floor = kw.boolean("floor", false);
+  kw.finish();
+  if (!(target > 0) || !std::isfinite(target)) kw.fail(key, "must be positive and finite");
+  Bounds3f b;
+  for (size_t i = 0; i < mesh->vertex_count(); ++i) b.extend(mesh->position(uint32_t(i)));
+  if (b.empty()) throw Error(std::string(fn) + ": the mesh has no vertices");
+  const Vec3f ext = b.hi - b.lo;
+  const float extent = key[0] == 'h' ? ext.y : key[0] == 'w' ? std::max(ext.x, ext.z)
+                                                                : std::max({ext.x, ext.y, ext.z});
+  if (!(extent > 0)) kw.fail(key, "cannot be fitted: the mesh is flat along it");
+  const float s = float(target / double(extent));
+  Vec3f anchor = (b.lo + b.hi) * 0.5f;
+  if (floor) anchor.y = b.lo.y;
+  push_transform(L, translate(center) * scale(Vec3f(s, s, s)) * translate(anchor * -1.0f));
+  return 1;
+}
+
 // mesh:save(path): binary little-endian PLY (geometry/ply.h); only .ply is written.
 int mesh_save(lua_State* L) {
   auto mesh = check_mesh(L, 1, "torte.mesh.save");
@@ -130,11 +171,13 @@ int mesh_index(lua_State* L) {
     lua_pushcfunction(L, guarded<mesh_smooth_normals>);
   } else if (key == "bounds") {
     lua_pushcfunction(L, guarded<mesh_bounds>);
+  } else if (key == "fit") {
+    lua_pushcfunction(L, guarded<mesh_fit>);
   } else if (key == "save") {
     lua_pushcfunction(L, guarded<mesh_save>);
   } else {
     throw Error("torte.mesh has no field '" + key +
-                "' (fields: triangles, vertices, has_normals, has_uvs; methods: subdivide, smooth_normals, bounds, save)");
+                "' (fields: triangles, vertices, has_normals, has_uvs; methods: subdivide, smooth_normals, bounds, fit, save)");
   }
   return 1;
 }

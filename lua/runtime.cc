@@ -207,6 +207,7 @@ void open_torte_module(lua_State* L, const RunOptions& options) {
   open_render(L, torte_index);
   open_images(L, torte_index);
   open_meshes(L, torte_index);
+  open_gltf(L, torte_index);
   open_textures(L, torte_index);
   open_voxels(L, torte_index);
   open_data(L, torte_index);

@@ -84,6 +84,7 @@ void open_cameras(lua_State* L, int torte_index);    // torte.camera.*
 void open_render(lua_State* L, int torte_index);     // torte.scene, torte.render, torte.filter.*, images
 void open_images(lua_State* L, int torte_index);     // torte.denoise (lua/bind_image.cc)
 void open_meshes(lua_State* L, int torte_index);     // torte.mesh.*, torte.clock
+void open_gltf(lua_State* L, int torte_index);       // torte.gltf.load (lua/bind_gltf.cc)
 void open_textures(lua_State* L, int torte_index);   // torte.texture.* (lua/bind_texture.cc)
 void open_voxels(lua_State* L, int torte_index);     // torte.voxel.*, torte.shape.voxels (lua/bind_voxel.cc)
 void open_data(lua_State* L, int torte_index);       // torte.data.*: files, zlib/gzip, NBT, bit fields (lua/bind_data.cc)
@@ -108,6 +109,8 @@ int64_t* new_longs(lua_State* L, size_t n);
 constexpr uint64_t kDefaultDecompressLimit = uint64_t(256) << 20;
 // The optional output limit argument at `idx` of decompressor `fn`: kDefaultDecompressLimit when nil.
 uint64_t decompress_limit(lua_State* L, int idx, const char* fn);
+/// Pushes a torte transform (userdata with `*`, :inverse() and :point()).
+void push_transform(lua_State* L, const Transform& t);
 // torte.shape.mesh's mesh=<torte.mesh> or file="path" (loaded now); nullptr when neither key is given.
 std::shared_ptr<const TriangleMesh> mesh_argument(KwArgs& kw);
 

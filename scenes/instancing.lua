@@ -26,10 +26,8 @@ local file = io.open(path, "rb")
 if file then
   file:close()
   local dragon = torte.mesh.load(path):smooth_normals()
-  local lo, hi = dragon:bounds()
-  local s = 1 / math.max(hi[1] - lo[1], hi[3] - lo[3])
   base:add(torte.shape.mesh{mesh = dragon, material = M.plastic{color = {0.7, 0.25, 0.08}, roughness = 0.25},
-                            transform = S(s) * T(-(lo[1] + hi[1]) / 2, -lo[2], -(lo[3] + hi[3]) / 2)})
+                            transform = dragon:fit{width = 1, floor = true}})
 else
   io.stderr:write(("instancing.lua: %s not found (../shared/data absent?); using spheres\n"):format(path))
   base:add(torte.shape.sphere{radius = 0.4, transform = T(0, 0.4, 0), material = M.plastic{color = {0.7, 0.25, 0.08}}})

@@ -42,10 +42,8 @@ local height, spacing = 1.6, 1.15
 for i, material in ipairs(materials) do
   local x = (2.5 - i) * spacing  -- +x is the image's left: the first material is leftmost
   if buddha then
-    local lo, hi = buddha:bounds()
-    local s = height / (hi[2] - lo[2])
-    local to_origin = T(-(lo[1] + hi[1]) / 2, -lo[2], -(lo[3] + hi[3]) / 2)
-    scene:add(torte.shape.mesh{mesh = buddha, transform = T(x, 0, 0) * S(s) * to_origin, material = material})
+    scene:add(torte.shape.mesh{mesh = buddha, transform = buddha:fit{height = height, center = {x, 0, 0}, floor = true},
+                               material = material})
   else
     scene:add(torte.shape.sphere{radius = 0.5, transform = T(x, 0.5, 0), material = material})
   end

@@ -1,6 +1,8 @@
 #include "geometry/obj.h"
 
 #include <charconv>
+#include <cmath>
+#include <set>
 #include <cstring>
 #include <filesystem>
 #include <unordered_map>
@@ -23,6 +25,17 @@ const char* const kIgnored[] = {"l",    "p",    "s",     "vp",   "cstype",   "de
                                 "curv", "curv2", "surf", "parm", "trim",     "hole",     "scrv",   "sp",
                                 "end",  "con",  "mg",    "lod",  "bevel",    "c_interp", "d_interp", "usemap",
                                 "maplib", "shadow_obj", "trace_obj", "ctech", "stech", "call", "csh"};
+
+// MTL statements torte reads nothing from (Ka, illum, maps other than map_Kd and bump, PBR extensions): skipped
+// without a warning (docs/formats.md says which are honoured).
+bool known_mtl_statement(std::string_view key) {
+  static const char* const kKnown[] = {"Tf", "illum", "sharpness", "map_Ka", "map_Ks", "map_Ns", "map_d",
+                                       "map_Ke", "disp", "decal", "refl", "Pr", "Pm", "Ps", "Pc", "Pcr",
+                                       "aniso", "anisor", "map_Pr", "map_Pm", "map_Ps", "norm", "map_Kn"};
+  for (const char* k : kKnown)
+    if (key == k) return true;
+  return false;
+}
 
 // Whitespace-separated tokens of one line.
 struct Tokens {
@@ -257,6 +270,7 @@ class Parser {
       return;
     }
     const std::string dir = std::filesystem::path(path).parent_path().string();
+    std::set<std::string> warned;
     int32_t current = -1;  // an index: materials may reallocate while the file adds more
     for_each_line(text, [&](size_t n, std::string_view line) {
       auto bad = [&](const std::string& problem) {
@@ -275,25 +289,50 @@ class Parser {
           out_.materials.push_back(std::move(mat));
         }
         current = it->second;
-      } else if (key == "Kd" || key == "Ke" || key == "map_Kd") {
+        out_.materials[current].defined = true;
+      } else if (key == "Kd" || key == "Ke" || key == "Ka" || key == "Ks" || key == "Ns" || key == "Ni" || key == "d" ||
+                 key == "Tr" || key == "map_Kd" || key == "map_Bump" || key == "bump" || key == "map_bump") {
         if (current < 0) bad(std::string(key) + " before any newmtl");
-        if (key == "map_Kd") {  // options (-s u v w, -clamp on, ...) come first; the file name is last
-          std::string_view last, t;
-          while (!(t = tok.next()).empty()) last = t;
-          if (last.empty()) bad("map_Kd needs a file name");
-          out_.materials[current].map_kd = resolve(dir, last);
+        ObjMaterial& mat = out_.materials[current];
+        if (key.starts_with("map_") || key == "bump") {  // options (-s u v w, -bm 0.5, ...) first; the file last
+          std::string_view last, t, prev;
+          while (!(t = tok.next()).empty()) {
+            if (prev == "-bm" && !parse_float(t, &mat.bump_scale)) bad("-bm needs a number, got " + quote_text(t));
+            prev = t;
+            last = t;
+          }
+          if (last.empty() || last[0] == '-') bad(std::string(key) + " needs a file name");
+          (key == "map_Kd" ? mat.map_kd : mat.map_bump) = resolve(dir, last);
           return;
         }
         float c[3];
         int count = 0;
-        for (std::string_view t = tok.next(); !t.empty() && count < 3; t = tok.next(), ++count)
+        for (std::string_view t = tok.next(); !t.empty() && t[0] != '#' && count < 3; t = tok.next(), ++count)
           if (!parse_float(t, &c[count])) bad(quote_text(t) + " is not a number");
-        if (count != 1 && count != 3) bad(std::string(key) + " needs 1 or 3 numbers");
+        const bool scalar = key == "Ns" || key == "Ni" || key == "d" || key == "Tr";
+        if (scalar ? count < 1 : count != 1 && count != 3)
+          bad(std::string(key) + (scalar ? " needs a number" : " needs 1 or 3 numbers"));
+        for (int i = 0; i < count; ++i)
+          if (!std::isfinite(c[i]) || c[i] < 0) bad(std::string(key) + " must be finite and non-negative");
         const Rgb rgb = count == 1 ? Rgb(c[0]) : Rgb(c[0], c[1], c[2]);
-        (key == "Kd" ? out_.materials[current].kd : out_.materials[current].ke) = rgb;
+        if (key == "Kd") mat.kd = rgb;
+        else if (key == "Ke") mat.ke = rgb;
+        else if (key == "Ka") mat.ka = rgb;
+        else if (key == "Ks") mat.ks = rgb;
+        else if (key == "Ns") mat.ns = c[0];
+        else if (key == "Ni") mat.ni = c[0];
+        else if (c[0] > 1) bad(std::string(key) + " must be in [0, 1]");
+        else mat.d = key == "d" ? c[0] : 1 - c[0];
+      } else if (!known_mtl_statement(key) && warned.insert(std::string(key)).second) {
+        // Statements of extensions torte does not know are skipped, said once per file (a typo shows up here).
+        out_.warnings.push_back(path + ": line " + std::to_string(n) + ": unknown MTL statement " +
+                                quote_text(key) + " ignored");
       }
-      // Other MTL statements (Ka, Ks, Ns, d, illum, other maps...) do not affect a diffuse material.
     });
+    // Some files (the classic cornell_box.mtl among them) give a light's radiance as Ka: an ambient reflectance
+    // above 1 cannot be a reflectance, so without a Ke it is read as emission.
+    for (ObjMaterial& m : out_.materials)
+      if (m.ke.is_black() && m.ka.max_component() > 1) m.ke = m.ka;
   }
 
   std::string name_, base_dir_;
@@ -313,6 +352,37 @@ class Parser {
 
 ObjData parse_obj(std::string_view text, const std::string& name, const std::string& base_dir) {
   return Parser(name, base_dir).run(text);
+}
+
+std::vector<ObjPart> split_by_material(const ObjData& data) {
+  const TriangleMesh& m = data.mesh;
+  std::vector<ObjPart> parts;
+  std::unordered_map<int32_t, size_t> part_of;
+  std::vector<std::vector<uint32_t>> remap;  // per part: source vertex -> part vertex (kNone = not yet)
+  for (size_t t = 0; t < m.triangle_count(); ++t) {
+    const int32_t mat = t < data.triangle_material.size() ? data.triangle_material[t] : -1;
+    const auto [it, inserted] = part_of.try_emplace(mat, parts.size());
+    if (inserted) {
+      parts.push_back({mat, {}});
+      remap.emplace_back(m.vertex_count(), kNone);
+    }
+    ObjPart& part = parts[it->second];
+    std::vector<uint32_t>& map = remap[it->second];
+    uint32_t c[3];
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = m.indices[3 * t + k];
+      if (map[v] == kNone) {
+        map[v] = uint32_t(part.mesh.vertex_count());
+        part.mesh.add_vertex(m.position(v));
+        if (m.has_uvs()) part.mesh.u.push_back(m.u[v]), part.mesh.v.push_back(m.v[v]);
+        if (m.has_normals())
+          part.mesh.nx.push_back(m.nx[v]), part.mesh.ny.push_back(m.ny[v]), part.mesh.nz.push_back(m.nz[v]);
+      }
+      c[k] = map[v];
+    }
+    part.mesh.add_triangle(c[0], c[1], c[2]);
+  }
+  return parts;
 }
 
 ObjData read_obj(const std::string& path) {

@@ -3,7 +3,8 @@
 // Reads v (extra vertex-colour values ignored), vt, vn, f (v, v/vt, v//vn, v/vt/vn; negative indices count back
 // from the latest element), o/g, usemtl, mtllib; l, p, s and the free-form curve/surface statements are ignored.
 // Polygons are fan-triangulated from their first vertex. A position referenced with different uv or normal
-// indices becomes distinct vertices. MTL: newmtl, Kd, Ke and map_Kd (a file name, relative to the MTL file).
+// indices becomes distinct vertices. MTL: newmtl, Kd, Ks, Ns, Ni, d, Tr, Ke (Ka above 1 as Ke), map_Kd and map_Bump/bump (file names
+// relative to the MTL file); other MTL statements (Ka, illum, other maps, ...) are ignored.
 //
 // Why not Debian's libtinyobjloader-dev (2.0.0~rc10): it reads damaged files without an error, which the renderer
 // must not (a corrupt mesh is an error naming file and line, never a silently wrong image). Tried 2026-11-22 with
@@ -22,8 +23,16 @@ namespace torte {
 struct ObjMaterial {
   std::string name;
   Rgb kd{0.8f, 0.8f, 0.8f};  // diffuse reflectance (the MTL default when Kd is absent is unspecified; this is grey)
-  Rgb ke;                    // emitted radiance (Ke), black if absent
+  Rgb ks;                    // specular reflectance (Ks), black if absent
+  float ns = 0;              // Phong specular exponent (Ns), 0 if absent
+  float ni = 1.5f;           // index of refraction (Ni)
+  float d = 1;               // opacity (d, or 1 - Tr)
+  Rgb ke;                    // emitted radiance (Ke), black if absent; Ka when that exceeds 1 and Ke is absent
+  Rgb ka;                    // ambient (Ka): read only for the Ke fallback
   std::string map_kd;        // diffuse texture file, resolved against the MTL file's directory; empty if none
+  std::string map_bump;      // bump (height) map file (map_Bump or bump), resolved the same way
+  float bump_scale = 1;      // its -bm option
+  bool defined = false;      // false: named by usemtl but defined in no mtllib file
 };
 
 struct ObjData {
@@ -34,6 +43,14 @@ struct ObjData {
   std::vector<uint32_t> triangle_group;     // per triangle: index into groups
   std::vector<std::string> warnings;        // e.g. a missing mtllib file or an unknown material name
 };
+
+/// The triangles of one material (ObjData::materials index, -1 = before any usemtl) as a mesh of their own,
+/// keeping only the vertices they use; in order of first use.
+struct ObjPart {
+  int32_t material = -1;
+  TriangleMesh mesh;
+};
+std::vector<ObjPart> split_by_material(const ObjData& data);
 
 // Throws torte::Error("<path>: line N: ...") for bad statements, numbers or out-of-range indices.
 ObjData read_obj(const std::string& path);

@@ -230,6 +230,13 @@ TexturePtr image(std::shared_ptr<const ImageSource> image) {
   return d;
 }
 
+TexturePtr image_scalar(std::shared_ptr<const ImageSource> image) {
+  if (!image) throw Error("'file' is missing");
+  auto d = node(TextureKind::Image, ValueType::Float, ValueType::Vec2);
+  d->image = std::move(image);
+  return d;
+}
+
 TexturePtr grayscale() { return node(TextureKind::Grayscale, ValueType::Rgb, ValueType::Float); }
 
 TexturePtr spline(std::vector<Rgb> colors, std::vector<float> positions, bool linear) {

@@ -100,6 +100,8 @@ TexturePtr xyz(const Transform& transform = {});  // the world point, in the spa
 TexturePtr checker(TexturePtr a, TexturePtr b, int dims, float scale = 1);
 TexturePtr noise(const NoiseParams& params);  // input Vec2 or Vec3 by params.dims; Float in [0, 1]
 TexturePtr image(std::shared_ptr<const ImageSource> image);  // Vec2 (st) -> Rgb
+// Vec2 (st) -> Float: the image's first channel (height and mask maps, which are grey).
+TexturePtr image_scalar(std::shared_ptr<const ImageSource> image);
 TexturePtr grayscale();  // Float -> Rgb (r = g = b = x)
 // Float -> Rgb; positions empty = evenly spaced over [0, 1]. Needs >= 1 colour (>= 2 for positions).
 TexturePtr spline(std::vector<Rgb> colors, std::vector<float> positions, bool linear);

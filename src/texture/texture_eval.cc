@@ -76,6 +76,7 @@ TexValue TextureTable::eval_node(int32_t index, const TextureContext& ctx, TexVa
       return splat(noise_texture(n.noise, Vec3f(in.x, in.y, in.z)));
     case TextureKind::Image: {
       const Rgb c = images_[size_t(n.extra)]->lookup(Vec2f(in.x, in.y), in.width);
+      if (n.output == ValueType::Float) return splat(c.r);  // image_scalar: Float values are splatted
       return {c.r, c.g, c.b, 0};
     }
     case TextureKind::Grayscale:
