@@ -7,6 +7,7 @@
 #include "geometry/mesh.h"
 #include "obj_import.h"
 #include "origin.h"
+#include "runtime.h"
 #include "types.h"
 
 namespace torte::lua {
@@ -217,7 +218,7 @@ int l_mesh(lua_State* L) {
   if (!s.material && !kw.has("mesh") && kw.has("file") && is_obj_path(kw.string("file"))) {
     // An OBJ file without a material from the script: its MTL materials, one shape per material (an array,
     // which scene:add takes like a shape); its Ke makes area lights unless the script gives an emission.
-    const std::string path = kw.string("file");
+    const std::string path = resolve_script_path(L, kw.string("file"));
     kw.finish();
     check_read(L, path, fn);
     const ObjData data = load_obj_file(path, fn);

@@ -15,6 +15,7 @@
 #include "core/text.h"
 #include "file_access.h"
 #include "origin.h"
+#include "runtime.h"
 #include "texture/image_texture_oiio.h"
 #include "types.h"
 
@@ -332,7 +333,7 @@ struct Importer {
 
 int l_gltf_load(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) throw Error(std::string(kFn) + " expects a file name, got " + type_name(L, 1));
-  Importer im{L, lua_tostring(L, 1), "", {}, {}, {}, {}, {}, std::make_shared<SceneBuilder>(), {}, {}, {}};
+  Importer im{L, resolve_script_path(L, lua_tostring(L, 1)), "", {}, {}, {}, {}, {}, std::make_shared<SceneBuilder>(), {}, {}, {}};
   im.dir = std::filesystem::path(im.path).parent_path().string();
   check_read(L, im.path, kFn);
   im.load();
