@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cornell_like.h"
+#include "cornell_reference.h"
 #include "material_room.h"
 #include "render/integrator_bdpt.h"
 #include "render/render.h"
@@ -17,35 +18,6 @@
 
 using namespace torte;
 using namespace torte::test;
-
-namespace {
-
-// Sanitizer builds (TORTE_TEST_REDUCED) run the heavy cases with fewer samples and looser bounds.
-bool reduced() {
-  const char* v = std::getenv("TORTE_TEST_REDUCED");
-  return v && std::string(v) != "0";
-}
-
-double rmse(const Image& a, const Image& b) {
-  double sum = 0;
-  for (size_t k = 0; k < a.pixels.size(); ++k) {
-    const double d = a.pixels[k].average() - b.pixels[k].average();
-    sum += d * d;
-  }
-  return std::sqrt(sum / double(a.pixels.size()));
-}
-
-// The reference: path tracing of the Cornell-like box, 64x64 at 4096 spp (16x16 tile means to about 0.1 %).
-const Image& path_reference() {
-  static const Image img = [] {
-    RenderSettings p = integrator_settings(IntegratorKind::Path, 64, reduced() ? 512 : 4096);
-    p.seed = 7;
-    return render_view(*cornell_like(), box_camera(), p).image;
-  }();
-  return img;
-}
-
-}  // namespace
 
 TEST_CASE("bdpt converges to path on the Cornell-like box (16x16 tile means of a 64x64 image)", "[render][bdpt]") {
   const Image& path = path_reference();

@@ -4,6 +4,7 @@
 #include "light/light_emission.h"
 #include "render/bdpt_connect.h"
 #include "render/bdpt_subpath.h"
+#include "render/bdpt_subpaths.h"
 #include "render/stage_camera.h"
 #include "render/stage_film.h"
 #include "render/stage_hits.h"
@@ -20,28 +21,29 @@ namespace {
 // two batches of shadow rays, then the film.
 class BdptTracer {
  public:
-  template <MaterialType T>
-  using Scratch = ShadeScratch<typename MaterialTraits<T>::Bsdf>;
-
   BdptTracer(const Scene& scene, const Camera& camera, const RenderSettings& image, const Sampler& sampler,
              const BdptSettings& bdpt)
-      : scene_(scene), camera_(camera), image_(image), sampler_(sampler), bdpt_(bdpt), rules_(bdpt.rules()),
-        connector_(scene, camera, sampler, {bdpt.max_depth, bdpt.only_s, bdpt.only_t}) {}
+      : scene_(scene), camera_(camera), image_(image), bdpt_(bdpt), rules_(bdpt.rules()),
+        connector_(scene, camera, sampler, {bdpt.max_depth, bdpt.only_s, bdpt.only_t}),
+        subpaths_(scene, rules_, sampler) {}
 
   void render(std::span<const SampleRequest> requests, Film& film, RenderStats& stats, SplatBuffer& splats) {
     StageStats& st = stats.stages;
     clock_ = StageClock(st.enabled);
     clock_.start();
-    start_light_subpaths(requests);
+    subpaths_.start_light(requests, lpaths_, light_);
     clock_.lap(st[Stage::Camera], requests.size());
     // Light subpaths: their last vertex (depth max_depth - 1) only connects to the camera, so they stop there.
-    if (bdpt_.max_depth > 0) advance(lpaths_, light_, TransportMode::Importance, kDimLightSubpathBase, 0.0f,
-                                     bdpt_.max_depth, false, stats);
-    start_camera_subpaths(requests);
+    if (bdpt_.max_depth > 0)
+      subpaths_.advance(lpaths_, light_, TransportMode::Importance, kDimLightSubpathBase, 0.0f, bdpt_.max_depth,
+                        false, stats, clock_);
+    else
+      subpaths_.drop_rays();
+    subpaths_.start_camera(requests, camera_, image_, cpaths_, camera_store_);
     stats.camera_rays += requests.size();
     clock_.lap(st[Stage::Camera], requests.size());
-    advance(cpaths_, camera_store_, TransportMode::Radiance, 0, camera_.spread_angle(), bdpt_.max_depth + 1, true,
-            stats);
+    subpaths_.advance(cpaths_, camera_store_, TransportMode::Radiance, 0, camera_.spread_angle(),
+                      bdpt_.max_depth + 1, true, stats, clock_);
     shadows_.clear();
     splat_queue_.clear();
     for (uint32_t i = 0; i < uint32_t(requests.size()); ++i)
@@ -55,80 +57,18 @@ class BdptTracer {
   }
 
  private:
-  // Light vertex 0 of every request and the first ray leaving it (generate_light_rays, drawing its light choice
-  // from the light subpaths' own dimensions).
-  void start_light_subpaths(std::span<const SampleRequest> requests) {
-    light_.clear(requests.size());
-    generate_light_rays(requests, scene_, sampler_, lpaths_, rays_, kDimLightSubpathBase,
-                        [&](size_t i, int l, float pmf, const EmissionSample& es) {
-                          BdptVertex v;
-                          v.kind = BdptVertexKind::Light;
-                          v.p = es.origin;
-                          v.ng = es.normal;
-                          v.light = l;
-                          v.pdf_fwd = pmf * es.pdf_pos;
-                          light_.push(v, uint32_t(i));
-                          lpaths_.bsdf_pdf[i] = es.pdf_dir;
-                        });
-  }
-
-  // Camera vertex 0 of every request and its camera ray (generate_camera_rays: filter and lens samples).
-  void start_camera_subpaths(std::span<const SampleRequest> requests) {
-    generate_camera_rays(requests, camera_, image_.filter, image_.width, image_.height, sampler_, cpaths_, rays_);
-    camera_store_.clear(requests.size());
-    for (size_t k = 0; k < rays_.size(); ++k) {
-      const uint32_t i = rays_.path[k];
-      BdptVertex v;
-      v.kind = BdptVertexKind::Camera;
-      v.p = rays_.origin(k);
-      v.pdf_fwd = 1;
-      camera_store_.push(v, i);
-      float pdf_pos, pdf_dir;
-      camera_.pdf_we(Ray{rays_.origin(k), rays_.dir(k)}, &pdf_pos, &pdf_dir);
-      cpaths_.bsdf_pdf[i] = pdf_dir;  // the density of the first ray, for camera vertex 1's pdf_fwd
-    }
-  }
-
-  // Advances the subpaths whose first rays are in rays_ until none goes on, keeping their vertices in `store`.
-  void advance(PathState& ps, BdptStore& store, TransportMode mode, uint32_t dim_base, float spread,
-               int depth_limit, bool camera_rays, RenderStats& stats) {
-    StageStats& st = stats.stages;
-    for (int bounce = 0; rays_.size() != 0; ++bounce) {
-      const bool coherent = camera_rays && bounce == 0;  // a tile's camera rays, as Wavefront traces them
-      trace_rays(scene_, rays_, hits_, coherent);
-      if (!coherent) stats.extension_rays += rays_.size();
-      clock_.lap(st[Stage::Trace], rays_.size());
-      sort_hits(scene_, rules_, sampler_, spread, rays_, hits_, ps, queues_, dim_base);
-      record_subpath_hits(scene_, rays_, hits_, ps, mode == TransportMode::Importance, store);
-      clock_.lap(st[Stage::Hits], queues_.slots.size());
-      next_.clear();
-      const ShadeContext ctx{scene_, rules_, sampler_, ps, rays_, hits_, next_, no_shadows_};
-      for_each_shaded_type([&](auto t) {
-        const std::span<const uint32_t> queue = queues_.queue(t());
-        shade_subpath_queue<t()>(ctx, queue, std::get<int(t())>(scratch_), store, mode, dim_base, depth_limit);
-        if (!queue.empty()) clock_.lap(st.shade[int(t())], queue.size());
-      });
-      std::swap(rays_, next_);
-    }
-  }
-
   const Scene& scene_;
   const Camera& camera_;
   const RenderSettings& image_;
-  const Sampler& sampler_;
   BdptSettings bdpt_;
   TransportRules rules_;
   BdptConnector connector_;
   PathState lpaths_, cpaths_;
   BdptStore light_, camera_store_;
-  RayQueue rays_, next_;
-  HitQueue hits_;
-  MaterialQueues queues_;
-  ShadowQueue no_shadows_;  // the shading context's; subpath kernels queue no shadow rays
+  BdptSubpaths subpaths_;
   ShadowQueue shadows_;
   CameraQueue splat_queue_;
   std::vector<uint8_t> occluded_;
-  PerShadedType<Scratch> scratch_;
   StageClock clock_;
 };
 

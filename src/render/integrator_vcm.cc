@@ -7,6 +7,7 @@
 #include "light/light_emission.h"
 #include "render/bdpt_connect.h"
 #include "render/bdpt_subpath.h"
+#include "render/bdpt_subpaths.h"
 #include "render/integrator_bdpt.h"
 #include "render/stage_camera.h"
 #include "render/stage_film.h"
@@ -38,44 +39,32 @@ struct Photons {
 // connections and merges), advanced as bdpt advances them.
 class VcmTracer {
  public:
-  template <MaterialType T>
-  using Scratch = ShadeScratch<typename MaterialTraits<T>::Bsdf>;
-
   VcmTracer(const Scene& scene, const Camera& camera, const RenderSettings& image, const Sampler& sampler,
             const VcmSettings& vcm, const Photons& photons)
-      : scene_(scene), camera_(camera), image_(image), sampler_(sampler), vcm_(vcm), rules_(vcm.rules()),
-        photons_(photons), connector_(scene, camera, sampler, {vcm.max_depth, -1, -1, 0.0, vcm.connect}) {}
+      : scene_(scene), camera_(camera), image_(image), vcm_(vcm), rules_(vcm.rules()),
+        photons_(photons), connector_(scene, camera, sampler, {vcm.max_depth, -1, -1, 0.0, vcm.connect}),
+        subpaths_(scene, rules_, sampler) {}
 
   // The light subpaths of `requests` into `store` (light vertex 0, then every surface vertex).
   void trace_light(std::span<const SampleRequest> requests, BdptStore& store, RenderStats& stats) {
-    store.clear(requests.size());
-    generate_light_rays(requests, scene_, sampler_, lpaths_, rays_, kDimLightSubpathBase,
-                        [&](size_t i, int l, float pmf, const EmissionSample& es) {
-                          BdptVertex v;
-                          v.kind = BdptVertexKind::Light;
-                          v.p = es.origin;
-                          v.ng = es.normal;
-                          v.light = l;
-                          v.pdf_fwd = pmf * es.pdf_pos;
-                          store.push(v, uint32_t(i));
-                          lpaths_.bsdf_pdf[i] = es.pdf_dir;
-                        });
+    subpaths_.start_light(requests, lpaths_, store);
     // The last light vertex (depth max_depth - 1) only connects to the camera or merges: they stop there.
     if (vcm_.max_depth > 0)
-      advance(lpaths_, store, TransportMode::Importance, kDimLightSubpathBase, 0.0f, vcm_.max_depth, false, stats);
+      subpaths_.advance(lpaths_, store, TransportMode::Importance, kDimLightSubpathBase, 0.0f, vcm_.max_depth,
+                        false, stats, clock_);
     else
-      rays_.clear();
+      subpaths_.drop_rays();
   }
 
   void render(std::span<const SampleRequest> requests, Film& film, RenderStats& stats, SplatBuffer& splats) {
     StageStats& st = stats.stages;
     clock_ = StageClock(st.enabled);
     clock_.start();
-    start_camera_subpaths(requests);
+    subpaths_.start_camera(requests, camera_, image_, cpaths_, camera_store_);
     stats.camera_rays += requests.size();
     clock_.lap(st[Stage::Camera], requests.size());
-    advance(cpaths_, camera_store_, TransportMode::Radiance, 0, camera_.spread_angle(), vcm_.max_depth + 1, true,
-            stats);
+    subpaths_.advance(cpaths_, camera_store_, TransportMode::Radiance, 0, camera_.spread_angle(), vcm_.max_depth + 1,
+                      true, stats, clock_);
     shadows_.clear();
     splat_queue_.clear();
     connector_.set_eta(vcm_.merge ? photons_.eta : 0.0);
@@ -112,64 +101,20 @@ class VcmTracer {
     if (value.is_finite()) cpaths_.radiance[i] += value;
   }
 
-  void start_camera_subpaths(std::span<const SampleRequest> requests) {
-    generate_camera_rays(requests, camera_, image_.filter, image_.width, image_.height, sampler_, cpaths_, rays_);
-    camera_store_.clear(requests.size());
-    for (size_t k = 0; k < rays_.size(); ++k) {
-      const uint32_t i = rays_.path[k];
-      BdptVertex v;
-      v.kind = BdptVertexKind::Camera;
-      v.p = rays_.origin(k);
-      v.pdf_fwd = 1;
-      camera_store_.push(v, i);
-      float pdf_pos, pdf_dir;
-      camera_.pdf_we(Ray{rays_.origin(k), rays_.dir(k)}, &pdf_pos, &pdf_dir);
-      cpaths_.bsdf_pdf[i] = pdf_dir;
-    }
-  }
-
-  // As BdptTracer::advance (render/integrator_bdpt.cc): trace, sort, record the vertices, shade per type.
-  void advance(PathState& ps, BdptStore& store, TransportMode mode, uint32_t dim_base, float spread,
-               int depth_limit, bool camera_rays, RenderStats& stats) {
-    StageStats& st = stats.stages;
-    for (int bounce = 0; rays_.size() != 0; ++bounce) {
-      const bool coherent = camera_rays && bounce == 0;
-      trace_rays(scene_, rays_, hits_, coherent);
-      if (!coherent) stats.extension_rays += rays_.size();
-      clock_.lap(st[Stage::Trace], rays_.size());
-      sort_hits(scene_, rules_, sampler_, spread, rays_, hits_, ps, queues_, dim_base);
-      record_subpath_hits(scene_, rays_, hits_, ps, mode == TransportMode::Importance, store);
-      clock_.lap(st[Stage::Hits], queues_.slots.size());
-      next_.clear();
-      const ShadeContext ctx{scene_, rules_, sampler_, ps, rays_, hits_, next_, no_shadows_};
-      for_each_shaded_type([&](auto t) {
-        const std::span<const uint32_t> queue = queues_.queue(t());
-        shade_subpath_queue<t()>(ctx, queue, std::get<int(t())>(scratch_), store, mode, dim_base, depth_limit);
-        if (!queue.empty()) clock_.lap(st.shade[int(t())], queue.size());
-      });
-      std::swap(rays_, next_);
-    }
-  }
-
   const Scene& scene_;
   const Camera& camera_;
   const RenderSettings& image_;
-  const Sampler& sampler_;
   VcmSettings vcm_;
   TransportRules rules_;
   const Photons& photons_;
   BdptConnector connector_;
   PathState lpaths_, cpaths_;
   BdptStore camera_store_;
-  RayQueue rays_, next_;
-  HitQueue hits_;
-  MaterialQueues queues_;
-  ShadowQueue no_shadows_;
+  BdptSubpaths subpaths_;
   ShadowQueue shadows_;
   CameraQueue splat_queue_;
   std::vector<uint8_t> occluded_;
   std::vector<uint32_t> chain_;
-  PerShadedType<Scratch> scratch_;
   StageClock clock_;
 };
 
