@@ -74,16 +74,8 @@ std::string format_scene_statistics(const SceneStatistics& s) {
 int scene_stats(lua_State* L) {
   auto scene = to_object<SceneBuilder>(L, 1);
   if (!scene) throw Error("scene:stats must be called with ':' on a scene");
-  RunContext& ctx = run_context(L);
   const auto t0 = std::chrono::steady_clock::now();
-  SceneCache::Lookup built;
-  try {
-    built = ctx.scene_cache.get(*scene, [&] { return build_scene(*scene, ctx.quiet); });
-  } catch (const Interrupted&) {
-    throw;
-  } catch (const Error& e) {
-    throw Error(std::string("scene:stats: ") + e.what());
-  }
+  const SceneCache::Lookup built = cached_scene(L, *scene, "scene:stats");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const SceneStatistics s = scene_statistics(*built.scene, seconds, built.reused);
   lua_newtable(L);

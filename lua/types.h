@@ -90,8 +90,11 @@ void open_voxels(lua_State* L, int torte_index);     // torte.voxel.*, torte.sha
 void open_data(lua_State* L, int torte_index);       // torte.data.*: files, zlib/gzip, NBT, bit fields (lua/bind_data.cc)
 // torte.simd.*, torte.script_dir, torte.quick, under --list-args torte._list_args (lua/bind_run.cc).
 /// The scene flattened and built for rendering, with a progress display on stderr unless `quiet`
-/// (lua/bind_render.cc; torte.render and scene:stats build through the run's scene cache with it).
+/// (lua/scene_build.cc).
 std::shared_ptr<Scene> build_scene(const SceneBuilder& scene, bool quiet);
+/// `scene` through the run's scene cache (built with build_scene when it changed); a build error becomes
+/// "<caller>: <message>" (torte.render and scene:stats).
+SceneCache::Lookup cached_scene(lua_State* L, const SceneBuilder& scene, const char* caller);
 void open_run(lua_State* L, int torte_index, const std::string& script_dir, bool quick, bool list_args);
 /// After the prelude: indexing a missing name of torte or of its tables of functions (torte.material, ...) is
 /// an error "torte.material has no 'plastik' (known: ...)" instead of a nil that fails later (lua/bind_run.cc).
