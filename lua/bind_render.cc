@@ -178,6 +178,20 @@ void print_summary(const RenderedImage& img, const RenderSettings& s) {
                double(st.rays()) * 1e-6, double(st.camera_rays) * 1e-6, double(st.extension_rays) * 1e-6,
                double(st.shadow_rays) * 1e-6, mrays, static_cast<unsigned long long>(st.dropped_samples),
                simd::current_target().c_str(), render_isa::selected_name());
+  if (st.time_limited)
+    std::fprintf(stderr, "time_limit %s reached: stopped after %d of %d spp\n", format_duration(s.time_limit).c_str(),
+                 st.spp_reached, s.spp);
+  if (!img.pixel_spp.empty()) {  // adaptive sampling: how the samples were spread
+    std::vector<uint32_t> spp = img.pixel_spp;
+    std::sort(spp.begin(), spp.end());
+    const double mean = double(st.samples_done) / double(spp.size());
+    const auto at = [&](double q) { return spp[std::min(spp.size() - 1, size_t(q * double(spp.size())))]; };
+    std::fprintf(stderr,
+                 "adaptive sampling (noise_threshold %g): spp per pixel min %u, 10 %% %u, median %u, 90 %% %u, max %u, "
+                 "mean %.1f (%.0f %% of %d spp everywhere)\n",
+                 double(s.noise_threshold), spp.front(), at(0.1), at(0.5), at(0.9), spp.back(), mean,
+                 100.0 * mean / double(s.spp), s.spp);
+  }
   if (st.units > 0)
     std::fprintf(stderr, "distributed over %d ranks: %.1f %% of the %llu units (tile, pass) rendered by ranks 1-%d\n",
                  dist::ranks(), 100.0 * double(st.remote_units) / double(st.units),
@@ -289,6 +303,10 @@ int l_render(lua_State* L) {
   // Vertex connection and merging, progressive photon mapping (render/integrator_vcm.h); checked always.
   s.merge_radius = float(kw.number("radius", s.merge_radius));
   s.merge_alpha = float(kw.number("alpha", s.merge_alpha));
+  // Adaptive sampling and a time budget (render/adaptive_sampling.h, render/tile_loop.h).
+  s.noise_threshold = float(kw.number("noise_threshold", 0));
+  s.adaptive_min_spp = kw.integer("adaptive_min_spp", s.adaptive_min_spp);
+  s.time_limit = kw.number("time_limit", 0);
   const int seed = kw.integer("seed", 0);
   if (seed < 0) kw.fail("seed", "must be a non-negative integer");
   s.seed = uint64_t(seed);
@@ -323,6 +341,10 @@ int l_render(lua_State* L) {
   }
   if (ctx.spp_override > 0) s.spp = ctx.spp_override;
   if (ctx.seed_override >= 0) s.seed = uint64_t(ctx.seed_override);
+  if (ctx.time_limit_override) s.time_limit = *ctx.time_limit_override;
+  if (ctx.noise_threshold_override) s.noise_threshold = *ctx.noise_threshold_override;
+  if (ctx.noise_threshold_override || ctx.spp_override > 0 || ctx.quick)  // the rules again, for the overrides
+    if (const auto problem = find_settings_problem(s)) throw Error("torte.render: " + problem->message());
   if (ctx.interrupted || interrupt_requested()) throw Interrupted("interrupted: torte.render was not started");
   // The film is checked before the scene is built, so an over-large image fails at once.
   reserve_memory(render_memory_bytes(s), "torte.render: the " + std::to_string(s.width) + "x" +
@@ -361,10 +383,12 @@ int l_render(lua_State* L) {
   img->image.attributes = render_attributes(s, integrator, *camera, out.stats);
   if (!out.stats.interrupted && !interrupt_requested()) {  // Ctrl-C: keep what the render made, nothing more
     const auto t_aov = std::chrono::steady_clock::now();
-    add_aovs(*img, flat, Camera(*camera, s.width, s.height), s, aov_request, ctx.cancel);
+    img->stats = out.stats;  // add_aovs reads the samples reached
+    add_aovs(*img, flat, Camera(*camera, s.width, s.height), s, aov_request, out.pixel_spp, ctx.cancel);
     img->aov_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_aov).count();
   }
   img->stats = out.stats;
+  img->pixel_spp = std::move(out.pixel_spp);
   img->build_seconds = build_seconds;
   img->scene_reused = built.reused;
   if (out.stats.interrupted || interrupt_requested()) {  // Ctrl-C: the script may still save this image
@@ -503,6 +527,12 @@ int image_index(lua_State* L) {
     lua_pushboolean(L, img->scene_reused);
   } else if (key == "interrupted") {
     lua_pushboolean(L, img->stats.interrupted);
+  } else if (key == "time_limited") {
+    lua_pushboolean(L, img->stats.time_limited);
+  } else if (key == "spp") {  // reached: the most any pixel took (fewer than asked after a time limit)
+    lua_pushinteger(L, img->stats.spp_reached);
+  } else if (key == "samples") {  // camera samples taken in all (adaptive sampling takes fewer)
+    lua_pushinteger(L, lua_Integer(img->stats.samples_done));
   } else if (key == "stages") {
     push_stages(L, img->stats.stages);
   } else if (push_image_field(L, *img, key)) {

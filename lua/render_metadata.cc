@@ -35,7 +35,12 @@ std::vector<ImageAttribute> render_attributes(const RenderSettings& s, const std
   std::vector<ImageAttribute> a;
   a.push_back({"Software", std::string("torte ") + TORTE_VERSION});
   a.push_back({"torte:integrator", integrator});
+  // Samples per pixel the render was asked for and what it reached (fewer after a time limit or an interruption;
+  // with adaptive sampling the most any pixel took, the image's "samples" layer holding each pixel's count).
   a.push_back({"torte:spp", s.spp});
+  a.push_back({"torte:spp_reached", stats.spp_reached});
+  if (s.noise_threshold > 0) a.push_back({"torte:noise_threshold", s.noise_threshold});
+  if (stats.time_limited) a.push_back({"torte:time_limit", float(s.time_limit)});
   a.push_back({"torte:max_depth", s.max_depth});
   a.push_back({"torte:seed", std::to_string(s.seed)});
   a.push_back({"torte:render_seconds", float(stats.render_seconds)});

@@ -302,6 +302,8 @@ int run_script(const RunOptions& options) {
   RunContext ctx;
   ctx.spp_override = options.spp_override;
   ctx.seed_override = options.seed_override;
+  ctx.time_limit_override = options.time_limit_override;
+  ctx.noise_threshold_override = options.noise_threshold_override;
   ctx.quiet = options.quiet;
   ctx.stats = options.stats;
   ctx.exposure_override = options.exposure_override;

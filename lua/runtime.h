@@ -19,6 +19,8 @@ struct RunOptions {
   std::vector<std::pair<std::string, std::string>> args;  // key=value from the command line
   int spp_override = -1;
   int64_t seed_override = -1;
+  std::optional<double> time_limit_override;      // --time-limit SECONDS
+  std::optional<float> noise_threshold_override;  // --noise-threshold X
   bool quiet = false;
   bool stats = false;  // --stats: a per-stage profile (render/stage_stats.h) on stderr after every render
   // --exposure, --tonemap: override what scripts pass to image:write / torte.save for display outputs.

@@ -23,6 +23,7 @@ struct RenderedImage {
   double build_seconds = 0;   // flattening the scene and building its BVHs for this render
   bool scene_reused = false;  // the scene of an earlier render was unchanged and served again (SceneCache)
   double aov_seconds = 0;     // the AOV pass and the denoiser, after the render
+  std::vector<uint32_t> pixel_spp;  // samples each pixel took, with adaptive sampling; else empty
 };
 
 template <> struct LuaName<MaterialDesc> { static constexpr const char* value = "torte.material"; };
@@ -47,7 +48,7 @@ AovRequest read_aov_request(KwArgs& kw, int spp);
 std::vector<Aov> parse_aov_names(const std::vector<std::string>& names, const std::string& where);
 /// Renders the layers `request` asks for into img.image (and denoises it when asked).
 void add_aovs(RenderedImage& img, const Scene& scene, const Camera& camera, const RenderSettings& s,
-              AovRequest request, const std::atomic<bool>* cancel);
+              AovRequest request, const std::vector<uint32_t>& pixel_spp, const std::atomic<bool>* cancel);
 /// Pushes image field `key` handled by lua/bind_image.cc (layers, layer); false when it is not one of those.
 bool push_image_field(lua_State* L, const RenderedImage& img, const std::string& key);
 
@@ -55,6 +56,8 @@ bool push_image_field(lua_State* L, const RenderedImage& img, const std::string&
 struct RunContext {
   int spp_override = -1;        // --spp
   int64_t seed_override = -1;   // --seed
+  std::optional<double> time_limit_override;       // --time-limit
+  std::optional<float> noise_threshold_override;   // --noise-threshold
   bool quiet = false;           // --quiet
   bool stats = false;           // --stats: every render collects and prints its per-stage profile
   std::optional<float> exposure_override;           // --exposure

@@ -67,14 +67,22 @@ int64_t parse_integer(const char* option, const std::string& value, int64_t min,
   return v;
 }
 
-// A finite number of stops in [-64, 64], the whole of `value`.
-float parse_stops(const char* option, const std::string& value) {
+// A number in [min, max], the whole of `value`; `what` names it in the error ("a number of stops").
+double parse_number(const char* option, const std::string& value, double min, double max,
+                    const char* what = "a number") {
   double v = 0;
   const char* end = value.data() + value.size();
   const auto [ptr, ec] = std::from_chars(value.data(), end, v);
-  if (ec != std::errc() || ptr != end || value.empty() || !(v >= -64 && v <= 64))
-    usage_error(std::string(option) + " expects a number of stops in [-64, 64], got '" + value + "'");
-  return float(v);
+  if (ec != std::errc() || ptr != end || value.empty() || !(v >= min && v <= max)) {
+    char range[64];
+    std::snprintf(range, sizeof range, " in [%g, %g]", min, max);
+    usage_error(std::string(option) + " expects " + what + range + ", got '" + value + "'");
+  }
+  return v;
+}
+
+float parse_stops(const char* option, const std::string& value) {
+  return float(parse_number(option, value, -64, 64, "a number of stops"));
 }
 
 uint64_t parse_size(const char* option, const std::string& value, uint64_t min) {
@@ -92,7 +100,7 @@ uint64_t parse_size(const char* option, const std::string& value, uint64_t min) 
 
 // The option values as given (strings, checked by the parsers above so errors read the same for every option).
 struct Given {
-  std::string aovs, threads, spp, seed, exposure, tonemap, checkpoint_every, max_memory, lua_memory,
+  std::string aovs, threads, spp, seed, time_limit, noise_threshold, exposure, tonemap, checkpoint_every, max_memory, lua_memory,
       lua_instructions, simd = "auto";
   std::vector<std::string> positionals;  // the script, then key=value arguments
 };
@@ -131,6 +139,12 @@ int main(int argc, char** argv) {
   app.add_option("--threads", g.threads, "render with N threads (default: all cores)")->option_text("N");
   app.add_option("--spp", g.spp, "override every render's samples per pixel")->option_text("N");
   app.add_option("--seed", g.seed, "override every render's random seed")->option_text("N");
+  app.add_option("--time-limit", g.time_limit,
+                 "stop every render at the first pass boundary after S seconds (the image holds the passes done)")
+      ->option_text("S");
+  app.add_option("--noise-threshold", g.noise_threshold,
+                 "adaptive sampling for every render: a pixel stops when its relative error is below X (e.g. 0.01)")
+      ->option_text("X");
   app.add_option("--simd", g.simd,
                  std::string("the SIMD target of the kernels and the render loop: ") + torte::simd::kTargetChoices +
                      " (default auto: the best this CPU runs)")
@@ -223,6 +237,9 @@ int main(int argc, char** argv) {
   const int threads = g.threads.empty() ? 0 : int(parse_integer("--threads", g.threads, 1, 4096));
   if (!g.spp.empty()) options.spp_override = int(parse_integer("--spp", g.spp, 1, kIntMax));
   if (!g.seed.empty()) options.seed_override = parse_integer("--seed", g.seed, 0, kInt64Max);
+  if (!g.time_limit.empty()) options.time_limit_override = parse_number("--time-limit", g.time_limit, 0, 1e9);
+  if (!g.noise_threshold.empty())
+    options.noise_threshold_override = float(parse_number("--noise-threshold", g.noise_threshold, 0, 1e3));
   if (!g.exposure.empty()) options.exposure_override = parse_stops("--exposure", g.exposure);
   if (!g.tonemap.empty()) {
     torte::ViewTransform view;

@@ -64,7 +64,17 @@ class Film {
     PixelSum& px = sums_[pixel];
     px.weighted += L * w;
     px.weight += w;
+    if (!moments_.empty()) {
+      const float y = L.luminance();
+      moments_[pixel] += w * y * y;
+    }
   }
+
+  /// Also sums w * luminance(L)^2 per pixel from now on (adaptive sampling's variance estimate, 4 bytes a
+  /// pixel); films that do not ask never pay for it.
+  void track_moments() { moments_.assign(sums_.size(), 0.0f); }
+  /// The sums of w * luminance^2 (empty unless track_moments was called).
+  std::span<const float> moments() const { return moments_; }
 
   /// A buffer for splats at arbitrary positions of this film.
   bool splat(SplatBuffer& buffer, Vec2f raster, Rgb value) const {
@@ -97,6 +107,7 @@ class Film {
   int width_ = 0, height_ = 0;
   std::vector<PixelSum> sums_;
   std::vector<Rgb> splats_;  // empty until the first merge_splats
+  std::vector<float> moments_;  // empty unless track_moments
 };
 
 }  // namespace torte

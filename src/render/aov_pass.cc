@@ -22,7 +22,8 @@ constexpr struct {
                  {Aov::Depth, "depth"},
                  {Aov::Position, "position"},
                  {Aov::MaterialId, "material_id"},
-                 {Aov::Emission, "emission"}};
+                 {Aov::Emission, "emission"},
+                 {Aov::Samples, "samples"}};
 
 // Mirrors and glass are followed this many bounces for the albedo and normal of what they show.
 constexpr int kMaxSpecularBounces = 8;
@@ -150,6 +151,12 @@ const char* aov_name(Aov aov) {
   return "?";
 }
 
+ImageLayer samples_layer(int width, int height, const std::vector<uint32_t>& pixel_spp, int spp) {
+  ImageLayer l{"samples", {"X"}, std::vector<float>(size_t(width) * size_t(height), float(spp))};
+  if (pixel_spp.size() == l.values.size()) std::copy(pixel_spp.begin(), pixel_spp.end(), l.values.begin());
+  return l;
+}
+
 std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                                     const std::vector<Aov>& aovs, int samples, const std::atomic<bool>* cancel) {
   const int w = settings.width, h = settings.height;
@@ -246,6 +253,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       case Aov::Depth: layers.push_back({"depth", {"Z"}, std::move(acc.depth)}); break;
       case Aov::MaterialId: layers.push_back({"material_id", {"X"}, std::move(acc.material)}); break;
       case Aov::Emission: layers.push_back({"emission", {"R", "G", "B"}, std::move(acc.emitted)}); break;
+      case Aov::Samples: break;  // counted by the render itself (samples_layer)
     }
   }
   return layers;

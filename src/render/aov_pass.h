@@ -11,6 +11,8 @@
 //                  sky is not in it): light without transport noise, which the denoiser keeps apart
 //   material_id    1 + dense index of the first hit's material (as the script assigned it: a mix is one id), 0
 //                  where nothing is hit; the most frequent id among the pixel's samples
+//   samples        camera samples the pixel took (a heat map of adaptive sampling, noise_threshold); not traced
+//                  by this pass but counted by the render (samples_layer)
 //
 // The pass traces its own camera samples (aov_samples per pixel, stratified over the pixel filter, and the lens),
 // independently of the integrator, so every integrator gets the same AOVs; deterministic for a seed.
@@ -27,14 +29,18 @@
 
 namespace torte {
 
-enum class Aov : uint8_t { Albedo, Normal, Depth, Position, MaterialId, Emission };
+enum class Aov : uint8_t { Albedo, Normal, Depth, Position, MaterialId, Emission, Samples };
 
 inline constexpr const char* kAovChoices =
-    "\"albedo\", \"normal\", \"depth\", \"position\", \"material_id\" or \"emission\"";
+    "\"albedo\", \"normal\", \"depth\", \"position\", \"material_id\", \"emission\" or \"samples\"";
 
 /// The AOV named `name` (as torte.render{aovs = ...} and --aovs spell it); false when none has that name.
 bool parse_aov(std::string_view name, Aov& out);
 const char* aov_name(Aov aov);
+
+/// The "samples" layer (channel X): `pixel_spp` when it has a count per pixel (adaptive sampling), else `spp`
+/// everywhere.
+ImageLayer samples_layer(int width, int height, const std::vector<uint32_t>& pixel_spp, int spp);
 
 /// The layers of `aovs` (in that order, each once) for `camera`'s view at settings' size, filter and seed, from
 /// `samples` camera samples per pixel. Layer names and channels are as multi-layer EXR readers expect

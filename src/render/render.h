@@ -7,6 +7,7 @@
 #pragma once
 #include <atomic>
 #include <cstdint>
+#include <vector>
 
 #include "camera/camera.h"
 #include "film/image.h"
@@ -25,6 +26,7 @@ class ProgressSink {
 struct RenderOutput {
   Image image;
   RenderStats stats;
+  std::vector<uint32_t> pixel_spp;  // samples each pixel took, with adaptive sampling (noise_threshold); else empty
 };
 
 /// Bytes render() allocates for an image of these settings (film and result), checked against the memory budget.

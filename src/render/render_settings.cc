@@ -28,6 +28,18 @@ std::optional<SettingsProblem> find_settings_problem(const RenderSettings& s) {
   if (!(s.merge_radius > 0) || !std::isfinite(s.merge_radius))
     return SettingsProblem{"radius", "must be positive and finite (relative to the scene's bounding radius)"};
   if (!(s.merge_alpha > 0 && s.merge_alpha <= 1)) return SettingsProblem{"alpha", "must be in (0, 1]"};
+  if (!(s.noise_threshold >= 0) || !std::isfinite(s.noise_threshold))
+    return SettingsProblem{"noise_threshold", "must be 0 (off) or a positive relative error such as 0.01"};
+  if (s.noise_threshold > 0 && !supports_adaptive_sampling(s.integrator))
+    return SettingsProblem{"noise_threshold",
+                           std::string("works with integrators path, direct and igi only, not \"") +
+                               integrator_name(s.integrator) +
+                               "\" (its light paths splat into pixels other than their own sample's)"};
+  if (s.adaptive_min_spp < 2 || s.adaptive_min_spp > kMaxSpp)
+    return SettingsProblem{"adaptive_min_spp", "must be in [2, " + std::to_string(kMaxSpp) + "], got " +
+                                                   std::to_string(s.adaptive_min_spp)};
+  if (!(s.time_limit >= 0) || !std::isfinite(s.time_limit))
+    return SettingsProblem{"time_limit", "must be 0 (none) or a positive number of seconds"};
   return std::nullopt;
 }
 

@@ -37,6 +37,9 @@ inline const char* integrator_name(IntegratorKind k) {
 // Integrators whose light paths connect to the lens (the camera must allow it, Camera::connect_problem).
 inline bool connects_to_camera(IntegratorKind k) { return splats_to_film(k); }
 
+// Integrators whose every sample lands in its own pixel, so a pixel may stop sampling on its own (noise_threshold).
+inline bool supports_adaptive_sampling(IntegratorKind k) { return !splats_to_film(k); }
+
 // Direct and Igi follow camera paths through specular chains only (the lighting they leave out is reached by
 // light sampling at every vertex, so torte.render{} samples all lights by default for them).
 inline bool ends_after_first_scatter(IntegratorKind k) {
@@ -71,6 +74,11 @@ struct RenderSettings {
   // vcm and ppm only: see VcmSettings (render/integrator_vcm.h).
   float merge_radius = 0.01f;
   float merge_alpha = 0.75f;
+  // Adaptive sampling (render/adaptive_sampling.h): 0 off, else a pixel stops when its relative error (and its
+  // neighbours') is below this, judged at pass boundaries from adaptive_min_spp samples on. Camera integrators only.
+  float noise_threshold = 0;
+  int adaptive_min_spp = 16;
+  double time_limit = 0;     // seconds; 0: none. The render stops at the first pass boundary after it.
   bool stage_stats = false;  // collect RenderStats::stages (torte --stats): one clock reading per stage call
   // Checkpoints and resuming (render/render_control.h); null: neither. Not part of what the image depends on.
   const struct RenderControl* control = nullptr;
@@ -92,6 +100,8 @@ struct RenderStats {
   uint64_t samples_done = 0;     // camera samples that reached the film (or were dropped)
   double render_seconds = 0;
   bool interrupted = false;
+  bool time_limited = false;  // stopped by RenderSettings::time_limit before every pass was rendered
+  int spp_reached = 0;        // samples per pixel of the passes completed (the most any pixel took)
   // A distributed render (rank 0): the (tile, pass) units of this render and how many other ranks rendered.
   uint64_t units = 0, remote_units = 0;
   StageStats stages;  // the per-stage profile, filled when RenderSettings::stage_stats is set

@@ -22,6 +22,7 @@
 #include "film/checkpoint.h"
 #include "film/film.h"
 #include "render/render.h"
+#include "render/adaptive_sampling.h"
 #include "render/render_control.h"
 #include "render/stage_camera.h"
 
@@ -91,16 +92,19 @@ template <class Worker>
 constexpr bool kSplats = requires(Worker& w, std::span<const SampleRequest> r, Film& f, RenderStats& st,
                                   SplatBuffer& b) { w.render(r, f, st, b); };
 
-// Renders samples [first_sample, first_sample + pass_spp) of every pixel of `tile` into `film` (and `splats`
-// for integrators that splat), in wavefronts of kWavefrontSamples in request order. Returns the samples.
+// Renders samples [first_sample, first_sample + pass_spp) of every pixel of `tile` (of those whose `active`
+// byte is set, when adaptive sampling gives one) into `film` (and `splats` for integrators that splat), in
+// wavefronts of kWavefrontSamples in request order. Returns the samples.
 template <class Worker>
 size_t render_tile(Slot<Worker>& w, const Tile& tile, int width, int first_sample, int pass_spp, Film& film,
-                   SplatBuffer* splats) {
+                   SplatBuffer* splats, const uint8_t* active = nullptr) {
   w.requests.clear();
   for (int y = tile.y0; y < tile.y1; ++y)
-    for (int x = tile.x0; x < tile.x1; ++x)
-      for (int s = first_sample; s < first_sample + pass_spp; ++s)
-        w.requests.push_back({uint32_t(y) * uint32_t(width) + uint32_t(x), uint32_t(s)});
+    for (int x = tile.x0; x < tile.x1; ++x) {
+      const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
+      if (active && !active[pixel]) continue;
+      for (int s = first_sample; s < first_sample + pass_spp; ++s) w.requests.push_back({pixel, uint32_t(s)});
+    }
   const std::span<const SampleRequest> all(w.requests);
   for (size_t b = 0; b < all.size(); b += kWavefrontSamples) {
     const auto chunk = all.subspan(b, std::min(kWavefrontSamples, all.size() - b));
@@ -160,11 +164,21 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
   else
     passes = detail::make_passes(settings.spp);
   Film film(settings.width, settings.height);
+  AdaptiveSampler adaptive(settings.width, settings.height, settings.noise_threshold,
+                           std::min(settings.adaptive_min_spp, settings.spp));
+  if (adaptive.enabled()) {
+    // The per-pixel moments live in this process's film only: not in checkpoints, not in tiles sent to ranks.
+    if (dist::distributed()) throw Error("noise_threshold does not work across MPI ranks yet: render without it");
+    if (settings.control)
+      throw Error("noise_threshold does not work with --checkpoint or --resume yet: render without one of them");
+    film.track_moments();
+  }
+  bool time_up = false;
   using Worker = typename decltype(driver.make_worker())::element_type;
   using Slot = detail::Slot<Worker>;
   PerThread<Slot> slots;
   std::atomic<uint64_t> samples_done{0}, rays_done{0};
-  const uint64_t samples_total = uint64_t(settings.width) * settings.height * settings.spp;
+  uint64_t samples_total = uint64_t(settings.width) * settings.height * settings.spp;
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
   const bool has_images = !scene.textures.images().empty();
@@ -221,6 +235,10 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
   for (; at.pass < passes.size(); ++at.pass) {
     const int pass_spp = passes[at.pass];
     if (cancelled() || texture_failed()) break;
+    if (at.pass > 0 && settings.time_limit > 0 && elapsed() >= settings.time_limit) {
+      time_up = true;  // at a pass boundary: every pixel has the same samples (or adaptive sampling's share)
+      break;
+    }
     driver.begin_pass(first_sample, pass_spp);
     for (;;) {  // until the pass is done; a checkpoint stops it between tiles and starts the rest
       todo.clear();
@@ -243,7 +261,7 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
           const size_t t = todo[i];
           const uint64_t rays_before = w.stats.rays();
           const size_t n = detail::render_tile(w, tiles[t], settings.width, first_sample, pass_spp, film,
-                                               kSplats ? &splats[t] : nullptr);
+                                               kSplats ? &splats[t] : nullptr, adaptive.active());
           if constexpr (kSplats) {
             const std::lock_guard<std::mutex> lock(merge_mutex);
             at.tile_done[t] = 1;
@@ -269,6 +287,14 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
     std::fill(at.tile_done.begin(), at.tile_done.end(), uint8_t(0));
     next_merge = 0;
     first_sample += pass_spp;
+    if (adaptive.enabled()) {
+      const size_t left = adaptive.end_pass(film, pass_spp);
+      samples_total = samples_done + uint64_t(left) * uint64_t(settings.spp - first_sample);
+      if (left == 0) {
+        ++at.pass;  // every pixel converged: the remaining passes have nothing to do
+        break;
+      }
+    }
     if (clock.due() || (clock.enabled() && at.pass + 1 == passes.size())) {
       ++at.pass;  // recorded as the next pass, none of its tiles done
       save();
@@ -286,6 +312,9 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
   out.stats.stages.enabled = settings.stage_stats;
   driver.finish(out.stats);
   out.stats.interrupted = cancelled() && out.stats.samples_done < samples_total;
+  out.stats.time_limited = time_up;
+  out.stats.spp_reached = first_sample;
+  out.pixel_spp = adaptive.pixel_spp();
   const uint64_t pixels = uint64_t(settings.width) * uint64_t(settings.height);
   out.image = film.image(kSplats && out.stats.samples_done > 0 ? float(double(pixels) / double(out.stats.samples_done))
                                                                : 1.0f);

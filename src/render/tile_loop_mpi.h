@@ -97,6 +97,7 @@ RenderOutput run_tiles_distributed(const Scene& scene, const RenderSettings& set
     save_checkpoint(clock, where, splats, next_merge, sum, film);
   };
   dist::Coordinator::Hooks hooks;
+  bool time_up = false;  // set between passes (the queue asks stop() before it starts the next one)
   hooks.begin_pass = [&](size_t p) { driver.begin_pass(first[p], passes[p]); };
   hooks.end_pass = [&] {
     if constexpr (splat) merge_ready(true);
@@ -104,13 +105,14 @@ RenderOutput run_tiles_distributed(const Scene& scene, const RenderSettings& set
     next_merge = 0;
     ++at.pass;
     if (clock.due() || (clock.enabled() && at.pass == passes.size())) save(at);
+    if (settings.time_limit > 0 && at.pass < passes.size() && elapsed() >= settings.time_limit) time_up = true;
   };
   hooks.tile_done = [&](uint32_t t) {
     at.tile_done[t] = 1;
     if constexpr (splat) merge_ready(false);
   };
   hooks.splats = [&](uint32_t t, SplatBuffer&& b) { splats[t] = std::move(b); };
-  hooks.stop = [&] { return cancelled() || texture_failed(); };
+  hooks.stop = [&] { return time_up || cancelled() || texture_failed(); };
   hooks.checkpoint_due = [&] { return clock.due(); };
   hooks.save = [&] { save(at); };
   hooks.progress = [&](uint64_t samples, const uint64_t counters[5]) {
@@ -146,7 +148,7 @@ RenderOutput run_tiles_distributed(const Scene& scene, const RenderSettings& set
     dist::abort_all(e.what());  // the server thread and the other ranks would wait for this one forever
   }
   server.join();
-  if (at.pass < passes.size()) {  // stopped within a pass
+  if (at.pass < passes.size() && !time_up) {  // stopped within a pass
     if (clock.enabled() && cancelled() && !texture_failed()) save(at);
     if constexpr (splat) merge_ready(true);
   }
@@ -162,6 +164,8 @@ RenderOutput run_tiles_distributed(const Scene& scene, const RenderSettings& set
   out.stats.stages.enabled = settings.stage_stats;
   driver.finish(out.stats);
   out.stats.interrupted = cancelled() && out.stats.samples_done < samples_total;
+  out.stats.time_limited = time_up;
+  out.stats.spp_reached = at.pass < passes.size() ? first[at.pass] : settings.spp;
   out.stats.units = uint64_t(tiles.size()) * passes.size();
   out.stats.remote_units = queue.remote_units();
   const uint64_t pixels = uint64_t(settings.width) * uint64_t(settings.height);
