@@ -285,8 +285,10 @@ int l_render(lua_State* L) {
     s.integrator = IntegratorKind::Vcm;
   } else if (integrator == "ppm") {
     s.integrator = IntegratorKind::Ppm;
+  } else if (integrator == "mlt") {
+    s.integrator = IntegratorKind::Mlt;
   } else {
-    kw.fail("integrator", "must be \"path\", \"direct\", \"igi\", \"lt\", \"bdpt\", \"vcm\" or \"ppm\", got \"" +
+    kw.fail("integrator", "must be \"path\", \"direct\", \"igi\", \"lt\", \"bdpt\", \"vcm\", \"ppm\" or \"mlt\", got \"" +
                               integrator + "\"");
   }
   // The seed's direct-lighting renderer samples every light at every hit; path tracing picks one by power. igi
@@ -303,6 +305,9 @@ int l_render(lua_State* L) {
   // Vertex connection and merging, progressive photon mapping (render/integrator_vcm.h); checked always.
   s.merge_radius = float(kw.number("radius", s.merge_radius));
   s.merge_alpha = float(kw.number("alpha", s.merge_alpha));
+  // Metropolis light transport (render/integrator_mlt.h); checked always.
+  s.large_step = float(kw.number("large_step", s.large_step));
+  s.chains = kw.integer("chains", s.chains);
   // Adaptive sampling and a time budget (render/adaptive_sampling.h, render/tile_loop.h).
   s.noise_threshold = float(kw.number("noise_threshold", 0));
   s.adaptive_min_spp = kw.integer("adaptive_min_spp", s.adaptive_min_spp);
@@ -323,7 +328,7 @@ int l_render(lua_State* L) {
     if (const std::string why = Camera(*camera, s.width, s.height).connect_problem(); !why.empty())
       kw.fail("camera", "cannot be used with integrator \"lt\": " + why);
   if (s.integrator == IntegratorKind::Bdpt || s.integrator == IntegratorKind::Vcm ||
-      s.integrator == IntegratorKind::Ppm) {  // as lt, and perspective only (integrator_bdpt.h, integrator_vcm.h)
+      s.integrator == IntegratorKind::Ppm || s.integrator == IntegratorKind::Mlt) {  // as lt, and perspective only (integrator_bdpt.h, integrator_vcm.h)
     const Camera cam(*camera, s.width, s.height);
     const std::string name = integrator_name(s.integrator);
     std::string why = cam.connect_problem();

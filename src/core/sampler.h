@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "core/primary_samples.h"
 #include "core/rng.h"
 #include "core/vec.h"
 
@@ -100,6 +101,8 @@ class Sampler {
   /// The point of 2D dimension pair `dimension` for (pixel, sample_index): Owen-scrambled Sobol dimensions 0 and
   /// 1 at an Owen-shuffled index. dimension counts pairs and singles alike: callers give each use its own number.
   Vec2f get_2d(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const {
+    if (primary_) [[unlikely]]
+      return primary_->get_2d(sample_index, dimension);
     using namespace sampler_detail;
     const Seeds s = derive_seeds(seed_hash_, pixel, dimension);
     // Owen-scrambling the index permutes it within every aligned power-of-two block (index bit k is flipped
@@ -119,17 +122,23 @@ class Sampler {
   }
   /// get_2d(pixel, sample_index, dimension).x, without computing y.
   float get_1d(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const {
+    if (primary_) [[unlikely]]
+      return primary_->get_2d(sample_index, dimension).x;
     using namespace sampler_detail;
     const Seeds s = derive_seeds(seed_hash_, pixel, dimension);
     const uint32_t r = laine_karras_permutation(reverse_bits(sample_index), s.shuffle);
     return to_unit_float(reverse_bits(laine_karras_permutation(reverse_bits(r), s.a)));
   }
+  /// From now on (until called with null) get_2d(pixel, s, d) reads coordinates d of Markov chain s of
+  /// `primary` instead (Metropolis light transport, render/integrator_mlt.h); the pixel is then ignored.
+  void use_primary_samples(const PrimarySamples* primary) { primary_ = primary; }
   /// get_2d spelled as the plain composition of sobol_dim0/1 and owen_scramble below (for tests).
   Vec2f get_2d_reference(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const;
 
  private:
   uint64_t seed_;
   uint64_t seed_hash_;  // mix_bits of the seed, computed once: every sample needs it
+  const PrimarySamples* primary_ = nullptr;
 };
 
 // Building blocks, exposed for tests.

@@ -1,76 +1,12 @@
 #include "render/integrator_bdpt.h"
 
 #include "core/error.h"
-#include "light/light_emission.h"
-#include "render/bdpt_connect.h"
-#include "render/bdpt_subpath.h"
-#include "render/bdpt_subpaths.h"
-#include "render/stage_camera.h"
-#include "render/stage_film.h"
-#include "render/stage_hits.h"
-#include "render/stage_light.h"
-#include "render/stage_trace.h"
+#include "render/bdpt_tracer.h"
 #include "render/tile_loop.h"
 
 namespace torte {
 
 namespace {
-
-// One worker's wavefront: per batch of requests, the light subpaths, then the camera subpaths (each advanced
-// bounce by bounce through trace, sort and the per-type subpath kernels), then every connection, traced as
-// two batches of shadow rays, then the film.
-class BdptTracer {
- public:
-  BdptTracer(const Scene& scene, const Camera& camera, const RenderSettings& image, const Sampler& sampler,
-             const BdptSettings& bdpt)
-      : scene_(scene), camera_(camera), image_(image), bdpt_(bdpt), rules_(bdpt.rules()),
-        connector_(scene, camera, sampler, {bdpt.max_depth, bdpt.only_s, bdpt.only_t}),
-        subpaths_(scene, rules_, sampler) {}
-
-  void render(std::span<const SampleRequest> requests, Film& film, RenderStats& stats, SplatBuffer& splats) {
-    StageStats& st = stats.stages;
-    clock_ = StageClock(st.enabled);
-    clock_.start();
-    subpaths_.start_light(requests, lpaths_, light_);
-    clock_.lap(st[Stage::Camera], requests.size());
-    // Light subpaths: their last vertex (depth max_depth - 1) only connects to the camera, so they stop there.
-    if (bdpt_.max_depth > 0)
-      subpaths_.advance(lpaths_, light_, TransportMode::Importance, kDimLightSubpathBase, 0.0f, bdpt_.max_depth,
-                        false, stats, clock_);
-    else
-      subpaths_.drop_rays();
-    subpaths_.start_camera(requests, camera_, image_, cpaths_, camera_store_);
-    stats.camera_rays += requests.size();
-    clock_.lap(st[Stage::Camera], requests.size());
-    subpaths_.advance(cpaths_, camera_store_, TransportMode::Radiance, 0, camera_.spread_angle(),
-                      bdpt_.max_depth + 1, true, stats, clock_);
-    shadows_.clear();
-    splat_queue_.clear();
-    for (uint32_t i = 0; i < uint32_t(requests.size()); ++i)
-      connector_.connect(i, light_, camera_store_, cpaths_, shadows_, splat_queue_);
-    clock_.lap(st[Stage::Connect], requests.size());
-    trace_shadows(scene_, shadows_, cpaths_, occluded_, stats);
-    trace_camera_connections(scene_, splat_queue_, film, splats, occluded_, stats);
-    clock_.lap(st[Stage::Shadows], shadows_.size() + splat_queue_.size());
-    accumulate_samples(cpaths_, film, stats);
-    clock_.lap(st[Stage::Film], cpaths_.size());
-  }
-
- private:
-  const Scene& scene_;
-  const Camera& camera_;
-  const RenderSettings& image_;
-  BdptSettings bdpt_;
-  TransportRules rules_;
-  BdptConnector connector_;
-  PathState lpaths_, cpaths_;
-  BdptStore light_, camera_store_;
-  BdptSubpaths subpaths_;
-  ShadowQueue shadows_;
-  CameraQueue splat_queue_;
-  std::vector<uint8_t> occluded_;
-  StageClock clock_;
-};
 
 class BdptDriver {
  public:

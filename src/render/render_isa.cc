@@ -6,6 +6,7 @@
 #include "render/integrator_direct.h"
 #include "render/integrator_igi.h"
 #include "render/integrator_lt.h"
+#include "render/integrator_mlt.h"
 #include "render/integrator_path.h"
 #include "render/integrator_vcm.h"
 
@@ -25,6 +26,7 @@ RenderOutput TORTE_RENDER_ISA(const Scene& scene, const Camera& camera, const Re
     case IntegratorKind::Bdpt: return render_bdpt(scene, camera, settings, progress, cancel);
     case IntegratorKind::Vcm:
     case IntegratorKind::Ppm: return render_vcm(scene, camera, settings, progress, cancel);
+    case IntegratorKind::Mlt: return render_mlt(scene, camera, settings, progress, cancel);
   }
   throw Error("internal: unknown integrator");
 }

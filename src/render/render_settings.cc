@@ -28,6 +28,10 @@ std::optional<SettingsProblem> find_settings_problem(const RenderSettings& s) {
   if (!(s.merge_radius > 0) || !std::isfinite(s.merge_radius))
     return SettingsProblem{"radius", "must be positive and finite (relative to the scene's bounding radius)"};
   if (!(s.merge_alpha > 0 && s.merge_alpha <= 1)) return SettingsProblem{"alpha", "must be in (0, 1]"};
+  if (!(s.large_step > 0 && s.large_step <= 1))
+    return SettingsProblem{"large_step", "must be in (0, 1] (the probability of a fresh path per mutation)"};
+  if (s.chains < 0 || s.chains > (1 << 20))
+    return SettingsProblem{"chains", "must be 0 (automatic) or a number of Markov chains up to 1048576"};
   if (!(s.noise_threshold >= 0) || !std::isfinite(s.noise_threshold))
     return SettingsProblem{"noise_threshold", "must be 0 (off) or a positive relative error such as 0.01"};
   if (s.noise_threshold > 0 && !supports_adaptive_sampling(s.integrator))

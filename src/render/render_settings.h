@@ -21,16 +21,18 @@ enum class IntegratorKind : uint8_t {
   Bdpt,    // bidirectional path tracing (render/integrator_bdpt.h): every (s, t) strategy, MIS-weighted
   Vcm,     // vertex connection and merging (render/integrator_vcm.h): bdpt's strategies plus photon merging
   Ppm,     // progressive photon mapping: vcm's merging only (render/integrator_vcm.h)
+  Mlt,     // primary-sample-space Metropolis over bdpt's samples (render/integrator_mlt.h)
 };
 
 // Integrators whose light paths connect to the camera and splat (the film keeps a splat sum per pixel).
 inline bool splats_to_film(IntegratorKind k) {
-  return k == IntegratorKind::Lt || k == IntegratorKind::Bdpt || k == IntegratorKind::Vcm || k == IntegratorKind::Ppm;
+  return k == IntegratorKind::Lt || k == IntegratorKind::Bdpt || k == IntegratorKind::Vcm || k == IntegratorKind::Ppm ||
+         k == IntegratorKind::Mlt;
 }
 
 /// The name scenes select the integrator by (`integrator = "..."`).
 inline const char* integrator_name(IntegratorKind k) {
-  constexpr const char* names[] = {"path", "direct", "igi", "lt", "bdpt", "vcm", "ppm"};
+  constexpr const char* names[] = {"path", "direct", "igi", "lt", "bdpt", "vcm", "ppm", "mlt"};
   return names[int(k)];
 }
 
@@ -74,6 +76,9 @@ struct RenderSettings {
   // vcm and ppm only: see VcmSettings (render/integrator_vcm.h).
   float merge_radius = 0.01f;
   float merge_alpha = 0.75f;
+  // mlt only: see MltSettings (render/integrator_mlt.h).
+  float large_step = 0.3f;
+  int chains = 0;  // 0: chosen from the image size and spp
   // Adaptive sampling (render/adaptive_sampling.h): 0 off, else a pixel stops when its relative error (and its
   // neighbours') is below this, judged at pass boundaries from adaptive_min_spp samples on. Camera integrators only.
   float noise_threshold = 0;

@@ -140,6 +140,12 @@ TEST_CASE("scenes: the Cornell box with bidirectional path tracing", "[scenes][b
   check_renders(dir, fs::path(TORTE_SOURCE_DIR) / "scenes" / "cornell-box.lua", {"integrator=bdpt", "max_depth=3"});
 }
 
+TEST_CASE("scenes: the Cornell box with Metropolis light transport", "[scenes][mlt]") {
+  ScenesDir dir("cornell_mlt");
+  check_renders(dir, fs::path(TORTE_SOURCE_DIR) / "scenes" / "cornell-box.lua",
+                {"integrator=mlt", "max_depth=3", "large_step=0.5"});
+}
+
 TEST_CASE("scenes: shapes.lua and lights.lua with direct lighting", "[scenes]") {
   ScenesDir dir("direct");
   const fs::path scenes = fs::path(TORTE_SOURCE_DIR) / "scenes";
