@@ -107,9 +107,10 @@ void check_consistent(const RenderStats& r, IntegratorKind k, const RenderSettin
   CHECK(st[Stage::Trace].seconds > 0);
   CHECK(st.threads >= 1);
   CHECK(st.threads <= 2);
-  // Each thread's laps lie within the render, so they sum to at most threads x wall time.
+  // Each thread's laps lie within the render, so they sum to at most threads x wall time (with a millisecond for
+  // the clock reads of the threads, which are not ordered with the render's own: measured 0.4 % over, under load).
   CHECK(st.total_seconds() > 0);
-  CHECK(st.total_seconds() <= double(st.threads) * r.render_seconds);
+  CHECK(st.total_seconds() <= double(st.threads) * r.render_seconds + 1e-3);
 }
 
 }  // namespace
