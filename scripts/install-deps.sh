@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages torte needs, and only those that are missing (idempotent).
-# Usage: scripts/install-deps.sh [--bench] [--cycles] [--fuzz]   (--bench adds Embree for bench/embree-compare,
-# --cycles Blender and Python image reading for make bench-cycles, --fuzz clang's libFuzzer and sanitizer
-# runtimes for make fuzz)
+# Usage: scripts/install-deps.sh [--bench] [--cycles] [--plots] [--fuzz]   (--bench adds Embree for
+# bench/embree-compare, --cycles Blender and Python image reading for make bench-cycles, --plots Python image
+# reading and matplotlib for the RMSE scripts in scripts/, --fuzz clang's libFuzzer and sanitizer runtimes for
+# make fuzz)
 set -euo pipefail
 packages=(cmake clang g++ make pkg-config ninja-build libhwy-dev libtbb-dev libopenimageio-dev liblua5.4-dev
           libbenchmark-dev catch2 zlib1g-dev liblz4-dev libxxhash-dev libopencolorio-dev
@@ -12,6 +13,7 @@ for arg in "$@"; do
   case "$arg" in
     --bench) packages+=(libembree-dev) ;;
     --cycles) packages+=(blender python3-numpy python3-openimageio) ;;  # make bench-cycles: Cycles and region means
+    --plots) packages+=(python3-numpy python3-openimageio python3-matplotlib) ;;  # scripts/integrator-rmse.sh
     --fuzz) packages+=(libclang-rt-14-dev) ;;  # make fuzz: libFuzzer and the sanitizer runtimes
     *) echo "install-deps: unknown option $arg" >&2; exit 2 ;;
   esac
