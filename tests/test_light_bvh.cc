@@ -172,16 +172,29 @@ TEST_CASE("light bvh: a light that can reach the receiver is never given probabi
   }
 }
 
-TEST_CASE("light bvh: lights at infinity share n / (n + 1) uniformly; only they when nothing is bounded",
+TEST_CASE("light bvh: lights at infinity share a probability weighed by irradiance; only they when nothing is bounded",
           "[lights][light_bvh]") {
   const TestScene s = make_scene(10, 0, 0, 2, 4);
   const LightBvh bvh(s.view(), s.lights, s.power);
   const Vec3f p(0.5f, 0.25f, 0);
-  CHECK(bvh.pmf(p, {0, 0, 0}, 10) == Approx(1 / 3.0f));
-  CHECK(bvh.pmf(p, {0, 0, 0}, 11) == Approx(1 / 3.0f));
+  const float p_inf = bvh.infinite_probability(p, {0, 0, 0});
+  CHECK(p_inf >= LightBvh::kMinShare);
+  CHECK(p_inf <= 1 - LightBvh::kMinShare);
+  CHECK(bvh.pmf(p, {0, 0, 0}, 10) == Approx(p_inf / 2));  // uniformly among the lights at infinity
+  CHECK(bvh.pmf(p, {0, 0, 0}, 11) == Approx(p_inf / 2));
   double bounded = 0;
   for (int l = 0; l < 10; ++l) bounded += bvh.pmf(p, {0, 0, 0}, l);
-  CHECK(bounded == Approx(1 / 3.0).epsilon(1e-4));
+  CHECK(bounded == Approx(1 - p_inf).epsilon(1e-4));
+  // A faint sky gets less than the bounded lights near p, more far from them, and a bright one more.
+  TestScene faint = s;
+  for (size_t l = 10; l < 12; ++l) faint.power[l] *= 1e-4f;
+  const LightBvh faint_bvh(faint.view(), faint.lights, faint.power);
+  const float near_share = faint_bvh.infinite_probability(p, {0, 0, 0});
+  INFO("sky share: " << p_inf << ", faint sky near the lights " << near_share << ", far from them "
+                     << faint_bvh.infinite_probability({0, 3000, 0}, {0, 0, 0}));
+  CHECK(near_share < p_inf);
+  CHECK(near_share >= LightBvh::kMinShare);
+  CHECK(faint_bvh.infinite_probability({0, 3000, 0}, {0, 0, 0}) > near_share);
 
   const TestScene sky_only = make_scene(0, 0, 0, 1, 4);
   const LightBvh only(sky_only.view(), sky_only.lights, sky_only.power);

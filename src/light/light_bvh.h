@@ -3,8 +3,9 @@
 // theta_o, widened by theta_e for the spread of emission off each normal) and their power; at a receiving point
 // the sampler descends choosing each child by its importance (power over squared distance, times how far the
 // point lies inside the cones), so a light far away or facing away is seldom chosen. Lights at infinity (and
-// directional lights) cannot be bounded: they are chosen uniformly with probability n_inf / (n_inf + 1), the
-// BVH root taking the rest, as pbrt does.
+// directional lights) cannot be bounded: they are chosen (uniformly among them) with a probability that weighs
+// their irradiance against the root's importance at the receiver, clamped to [kMinShare, 1 - kMinShare] as
+// neither estimate sees occlusion; pbrt's fixed n_inf / (n_inf + 1) gave a faint sky half of all samples.
 //
 // Deterministic, no allocation per query, read-only after the build (shared by all threads).
 #pragma once
@@ -58,6 +59,11 @@ class LightBvh {
   /// The probability that sample(p, n, ...) returns `light`.
   float pmf(Vec3f p, Vec3f n, int light) const;
   size_t node_count() const { return nodes_.size(); }
+  /// The probability that sample(p, n, ...) picks a light at infinity (0 without any, 1 without bounded lights
+  /// or when none of them can reach p).
+  float infinite_probability(Vec3f p, Vec3f n) const;
+  /// The least share of samples either side gets when both exist.
+  static constexpr float kMinShare = 0.1f;
 
   struct Node {
     LightBounds bounds;
@@ -73,6 +79,7 @@ class LightBvh {
   std::vector<uint64_t> trail_;         // per light: the branch bits from the root (bit d: second child at depth d)
   std::vector<uint8_t> in_bvh_;         // per light: 1 in the BVH, 2 at infinity, 0 never chosen
   size_t light_count_ = 0;
+  float infinite_irradiance_ = 0;  // what the lights at infinity give a surface facing them, summed
 };
 
 }  // namespace torte

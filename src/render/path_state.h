@@ -28,6 +28,7 @@ struct PathState {
   std::vector<Rgb> radiance;         // accumulated estimate
   std::vector<float> bsdf_pdf;       // pdf of the BSDF sample that produced the current ray (for MIS)
   std::vector<Vec3f> prev_p;         // the vertex that ray left (the light BVH's pmf there, for MIS)
+  std::vector<Vec3f> prev_n;         // ... and its geometric normal (the light BVH weighs the receiver's cosine)
   std::vector<uint16_t> depth;       // scattering events so far
   std::vector<uint8_t> flags;        // PathFlags
   std::vector<float> eta_scale;      // product of eta^2 over refractions (Russian roulette ignores it)
@@ -35,7 +36,7 @@ struct PathState {
 
   void resize(size_t n) {
     pixel.resize(n); sample.resize(n); filter_weight.resize(n); beta.resize(n); radiance.resize(n);
-    bsdf_pdf.resize(n); prev_p.resize(n); depth.resize(n); flags.resize(n); eta_scale.resize(n); footprint.resize(n);
+    bsdf_pdf.resize(n); prev_p.resize(n); prev_n.resize(n); depth.resize(n); flags.resize(n); eta_scale.resize(n); footprint.resize(n);
   }
   size_t size() const { return pixel.size(); }
 };

@@ -130,6 +130,7 @@ inline void continue_path(const ShadeContext& ctx, uint32_t slot, const Frame& f
   ps.beta[i] = beta;
   ps.bsdf_pdf[i] = bs.pdf;
   ps.prev_p[i] = s.p;
+  ps.prev_n[i] = s.ng;
   ps.flags[i] = bs.is_specular() ? kPathSpecular : kPathScattered;
   ps.depth[i] = uint16_t(depth + 1);
   ctx.next.push(offset_origin(s.p, s.ng, wi), wi, kInfinity, i);
@@ -226,7 +227,7 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
     } else {
       float pmf;
       const float u = ctx.sampler.get_1d(px, si, bounce_dim(ps.depth[i], kDimLightSelect));
-      const int l = ctx.rules.light_sampler == LightSamplerKind::Bvh ? scene.light_bvh.sample(s.p, {0, 0, 0}, u, &pmf)
+      const int l = ctx.rules.light_sampler == LightSamplerKind::Bvh ? scene.light_bvh.sample(s.p, s.ng, u, &pmf)
                                                                       : scene.light_selection.sample_discrete(u, &pmf);
       if (l >= 0 && pmf > 0)
         detail::add_candidate(ctx, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], pmf,

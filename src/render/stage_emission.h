@@ -16,7 +16,7 @@ inline float emission_weight(const Scene& scene, const PathState& ps, const Tran
   // Seen by the camera or through a delta lobe: no light sampling competes.
   if (ps.depth[i] == 0 || (ps.flags[i] & kPathSpecular)) return 1.0f;
   const float pmf = rules.sample_all_lights                          ? 1.0f
-                    : rules.light_sampler == LightSamplerKind::Bvh ? scene.light_bvh.pmf(ps.prev_p[i], {0, 0, 0}, light_index)
+                    : rules.light_sampler == LightSamplerKind::Bvh ? scene.light_bvh.pmf(ps.prev_p[i], ps.prev_n[i], light_index)
                                                                    : scene.light_selection.pmf(light_index);
   return power_heuristic(1, ps.bsdf_pdf[i], 1, pmf * light_pdf);
 }
