@@ -25,10 +25,11 @@ TEST_CASE("bdpt converges to path on the Cornell-like box (16x16 tile means of a
       render_view(*cornell_like(), box_camera(), integrator_settings(IntegratorKind::Bdpt, 64, reduced() ? 64 : 512));
   INFO("bdpt mean " << image_mean(bdpt.image) << ", path mean " << image_mean(path) << ", worst tile "
                     << max_tile_error(bdpt.image, path, 16));
-  // Measured (seed 0, 512 spp): mean -0.43 %, worst tile 1.16 %; the mean sits about 0.4 % low at any spp (a
-  // bias not yet found, growing with path length: -0.1 % at max_depth 2, -0.3 % at 5, -0.5 % at 64).
-  CHECK(image_mean(bdpt.image) == Approx(image_mean(path)).epsilon(reduced() ? 0.02 : 0.007));
-  CHECK(max_tile_error(bdpt.image, path, 16) < (reduced() ? 0.04 : 0.015));
+  // Measured (seed 0, 512 spp): mean -0.10 %, worst tile 0.34 %. Until connection rays stopped short enough of
+  // their far end (bdpt_connect.cc, push_connection) they were occluded by its own surface now and then: the
+  // mean sat 0.43 % low and the worst tile 1.16 %, which these bounds now catch.
+  CHECK(image_mean(bdpt.image) == Approx(image_mean(path)).epsilon(reduced() ? 0.02 : 0.003));
+  CHECK(max_tile_error(bdpt.image, path, 16) < (reduced() ? 0.04 : 0.008));
   CHECK(bdpt.stats.shadow_rays > 0);
   CHECK(bdpt.stats.dropped_samples == 0);
 }

@@ -58,11 +58,16 @@ bool point_like(const Light& light) { return light.kind == LightKind::Point || l
 
 float remap0(float x) { return x != 0 ? x : 1; }
 
-void push_connection(ShadowQueue& shadows, const BdptVertex& from, Vec3f wi, Vec3f to, Rgb value, uint32_t path) {
+void push_connection(ShadowQueue& shadows, const BdptVertex& from, Vec3f wi, Vec3f to, Vec3f to_ng, Rgb value,
+                     uint32_t path) {
   if (value.is_black() || !value.is_finite()) return;
   const Vec3f o = offset_origin(from.p, from.ng, wi);
-  // Stop just short of the other vertex (measured from the offset origin), so its own surface does not occlude.
-  shadows.push(o, wi, length(to - o) * (1 - 1e-4f), value, path);
+  // Both ends are moved off their surfaces (the far one towards o) and the ray stops 1e-3 short: the traversal's
+  // hit distances err by up to a few 1e-4 (relative) on long rays, so stopping 1e-4 short of a point on a surface
+  // let that surface occlude it (the Cornell box's block tops lost a fifth of the ceiling's indirect light to
+  // bdpt's connections; with the end offset alone, a sixteenth; bench/RESULTS.md 2026-12-04).
+  const Vec3f target = offset_origin(to, to_ng, -wi);
+  shadows.push(o, wi, length(target - o) * (1 - 1e-3f), value, path);
 }
 
 }  // namespace
@@ -231,7 +236,7 @@ void BdptConnector::strategy(int s, int t, uint32_t path, const BdptStore& light
     cr_[tc] = to_area_density(emission_pdf_dir(l, lv.ng, -wi), lv.p, v);
     cd_[tc] = 0;
     if (t >= 3) cr_[tc - 1] = to_area_density(e.rev, v.p, camera.vertices[cchain_[tc - 1]]);
-    push_connection(shadows, v, wi, lv.p, value * float(mis_weight(1, t, point_like(l))), path);
+    push_connection(shadows, v, wi, lv.p, lv.ng, value * float(mis_weight(1, t, point_like(l))), path);
     return;
   }
 
@@ -251,7 +256,7 @@ void BdptConnector::strategy(int s, int t, uint32_t path, const BdptStore& light
   cd_[tc] = 0;
   if (t >= 3) cr_[tc - 1] = to_area_density(ev.rev, v.p, camera.vertices[cchain_[tc - 1]]);
   lr_[sl - 1] = to_area_density(eq.rev, q.p, light.vertices[lchain_[sl - 1]]);
-  push_connection(shadows, v, w, q.p, value * float(mis_weight(s, t, light_delta)), path);
+  push_connection(shadows, v, w, q.p, q.ng, value * float(mis_weight(s, t, light_delta)), path);
 }
 
 int BdptConnector::begin_merges(uint32_t path, const BdptStore& camera) {
