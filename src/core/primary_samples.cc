@@ -29,14 +29,14 @@ PrimarySamples::PrimarySamples(uint64_t seed, uint32_t first_chain, uint32_t cha
       slots_(2 * region_size + kSingles), chains_(chains), value_(size_t(chains) * slots_),
       stamp_(size_t(chains) * slots_, 0), touched_(chains) {}
 
-uint64_t PrimarySamples::large_step_key(uint32_t c, uint64_t iteration) const {
-  return hash3(seed_hash_, uint64_t(first_chain_ + c) << 1, iteration);
+uint64_t PrimarySamples::large_step_key(uint32_t c, uint64_t proposal) const {
+  return hash3(seed_hash_, uint64_t(first_chain_ + c) << 1, proposal);
 }
 
 uint64_t PrimarySamples::bootstrap_key(uint64_t k) const { return hash3(seed_hash_, 1, k); }
 
 void PrimarySamples::start_at(uint32_t c, uint64_t key) {
-  chains_[c] = Chain{2, 1, key, 0, false, false};
+  chains_[c] = Chain{2, 0, 1, key, 0, false, false};
   std::fill_n(stamp_.begin() + ptrdiff_t(size_t(c) * slots_), slots_, uint64_t(0));
   touched_[c].clear();
 }
@@ -45,7 +45,8 @@ void PrimarySamples::propose(uint32_t c, bool large_step) {
   Chain& ch = chains_[c];
   ch.proposing = true;
   ch.large = large_step;
-  ch.proposal_key = large_step ? large_step_key(c, ch.iteration) : 0;
+  ++ch.proposals;
+  ch.proposal_key = large_step ? large_step_key(c, ch.proposals) : 0;
   touched_[c].clear();
 }
 
@@ -68,8 +69,7 @@ void PrimarySamples::reject(uint32_t c) {
     stamp_[base + b.slot] = b.stamp;
   }
   touched_[c].clear();
-  ch.proposing = false;
-  ++ch.iteration;
+  ch.proposing = false;  // the clock stays: the next proposal starts again from the same state
 }
 
 uint32_t PrimarySamples::slot_of(uint32_t d) const {
@@ -100,7 +100,7 @@ Vec2f PrimarySamples::get_2d(uint32_t c, uint32_t dimension) const {
       v = uniform2(hash3(ch.proposal_key, slot, 0));
     } else {
       // The small steps of every iteration since the coordinate was last read, as one normal step (Box-Muller).
-      const Vec2f u = uniform2(hash3(seed_hash_ ^ (uint64_t(first_chain_ + c) << 20), ch.iteration, slot));
+      const Vec2f u = uniform2(hash3(seed_hash_ ^ (uint64_t(first_chain_ + c) << 20), ch.proposals, slot));
       const float r = kSigma * std::sqrt(float(ch.iteration - stamp)) * std::sqrt(-2 * std::log(1 - u.x));
       const float phi = 6.28318530718f * u.y;
       v = {wrap(v.x + r * std::cos(phi)), wrap(v.y + r * std::sin(phi))};

@@ -2,7 +2,7 @@
 // vector of uniform numbers that a renderer reads through Sampler (Sampler::use_primary_samples) instead of its
 // low-discrepancy points, so that one path is a deterministic function of one vector and a mutation of the vector
 // is a mutation of the path. Coordinates are mutated lazily, when first read in a proposal (pbrt-v3's MLTSampler
-// does the same): a small step moves each one by a normal offset of sigma per iteration since it was last read
+// does the same): a small step moves each one by a normal offset of sigma per accepted move since it was last read
 // (wrapped into [0, 1)), a large step draws it afresh. Every random number is a hash of (seed, chain, iteration,
 // coordinate), so a chain's path does not depend on the order its coordinates are read in, nor on threads.
 //
@@ -42,8 +42,8 @@ class PrimarySamples {
   /// Throws torte::Error for a dimension outside the regions (a path longer than the regions were sized for).
   Vec2f get_2d(uint32_t c, uint32_t dimension) const;
 
-  /// The key of large step `iteration` of chain c (what start_at takes to replay it).
-  uint64_t large_step_key(uint32_t c, uint64_t iteration) const;
+  /// The key of the large step chain c proposes as its `proposal`-th proposal.
+  uint64_t large_step_key(uint32_t c, uint64_t proposal) const;
   /// The key of bootstrap sample k.
   uint64_t bootstrap_key(uint64_t k) const;
 
@@ -51,7 +51,12 @@ class PrimarySamples {
 
  private:
   struct Chain {
-    uint64_t iteration = 0;        // the proposal being made (or the next one)
+    // Accepted moves + 2: the clock of the coordinates' stamps. A rejected proposal does not advance it (as in
+    // pbrt-v3's MLTSampler): the small steps a coordinate skipped are those of accepted moves only. Counting
+    // rejections too made the steps out of a state grow the longer the chain stayed in it, so chains left
+    // bright states too easily (the Cornell box's light 4 % dark at 4096 mutations per pixel).
+    uint64_t iteration = 0;
+    uint64_t proposals = 0;        // every proposal made: keys the proposal's random numbers
     uint64_t large_iteration = 0;  // iteration of the accepted large step that set the unread coordinates
     uint64_t large_key = 0;        // ... and its key
     uint64_t proposal_key = 0;     // key of the large step being proposed
