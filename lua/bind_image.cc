@@ -57,7 +57,7 @@ AovRequest read_aov_request(KwArgs& kw, int spp) {
 }
 
 void add_aovs(RenderedImage& img, const Scene& scene, const Camera& camera, const RenderSettings& s,
-              AovRequest request, const std::vector<uint32_t>& pixel_spp, const std::atomic<bool>* cancel) {
+              AovRequest request, const std::atomic<bool>* cancel) {
   std::vector<Aov> aovs = request.aovs;
   if (request.denoise)
     for (Aov a : {Aov::Albedo, Aov::Normal, Aov::Depth, Aov::Emission})
@@ -67,7 +67,7 @@ void add_aovs(RenderedImage& img, const Scene& scene, const Camera& camera, cons
   if (samples) aovs.erase(counted);
   if (!aovs.empty()) img.image.layers = render_aovs(scene, camera, s, aovs, request.samples, cancel);
   if (samples)
-    img.image.layers.push_back(samples_layer(s.width, s.height, pixel_spp, img.stats.spp_reached));
+    img.image.layers.push_back(samples_layer(s.width, s.height, img.pixel_spp, img.stats.spp_reached));
   if (aovs.empty()) return;
   if (request.denoise) img.image = denoise(img.image);
 }

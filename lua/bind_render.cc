@@ -386,14 +386,13 @@ int l_render(lua_State* L) {
   progress.finish();
   img->image = std::move(out.image);
   img->image.attributes = render_attributes(s, integrator, *camera, out.stats);
-  if (!out.stats.interrupted && !interrupt_requested()) {  // Ctrl-C: keep what the render made, nothing more
-    const auto t_aov = std::chrono::steady_clock::now();
-    img->stats = out.stats;  // add_aovs reads the samples reached
-    add_aovs(*img, flat, Camera(*camera, s.width, s.height), s, aov_request, out.pixel_spp, ctx.cancel);
-    img->aov_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_aov).count();
-  }
   img->stats = out.stats;
   img->pixel_spp = std::move(out.pixel_spp);
+  if (!out.stats.interrupted && !interrupt_requested()) {  // Ctrl-C: keep what the render made, nothing more
+    const auto t_aov = std::chrono::steady_clock::now();
+    add_aovs(*img, flat, Camera(*camera, s.width, s.height), s, aov_request, ctx.cancel);
+    img->aov_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_aov).count();
+  }
   img->build_seconds = build_seconds;
   img->scene_reused = built.reused;
   if (out.stats.interrupted || interrupt_requested()) {  // Ctrl-C: the script may still save this image

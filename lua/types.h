@@ -46,9 +46,10 @@ struct AovRequest {
 AovRequest read_aov_request(KwArgs& kw, int spp);
 /// The AOV names of `names` (errors start with `where`), each once.
 std::vector<Aov> parse_aov_names(const std::vector<std::string>& names, const std::string& where);
-/// Renders the layers `request` asks for into img.image (and denoises it when asked).
+/// Renders the layers `request` asks for into img.image (and denoises it when asked); the "samples" layer comes
+/// from img.pixel_spp and img.stats, which must be set first.
 void add_aovs(RenderedImage& img, const Scene& scene, const Camera& camera, const RenderSettings& s,
-              AovRequest request, const std::vector<uint32_t>& pixel_spp, const std::atomic<bool>* cancel);
+              AovRequest request, const std::atomic<bool>* cancel);
 /// Pushes image field `key` handled by lua/bind_image.cc (layers, layer); false when it is not one of those.
 bool push_image_field(lua_State* L, const RenderedImage& img, const std::string& key);
 
