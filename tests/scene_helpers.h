@@ -70,6 +70,19 @@ inline double furnace_sphere_mean_green(const Image& img) {
   return furnace_sphere_mean(img, [](const Rgb& c) { return double(c.g); });
 }
 
+// The furnace of the integrator tests: inside a closed two-sided sphere of albedo 0.8 emitting 0.2, a path of
+// at most `depth` scattering events sees 1 - 0.8^(depth + 1) (the geometric series of emission and reflection).
+inline std::shared_ptr<Scene> emitting_shell() {
+  SceneBuilder b;
+  ShapeDesc shell = sphere_shape(1, Transform(), matte(0.8f));
+  shell.emission = Rgb(0.2f);
+  shell.two_sided = true;
+  b.add_shape(shell);
+  return b.flatten();
+}
+inline CameraDesc shell_camera() { return camera_at({0.2f, -0.1f, 0.3f}, {0, 0, 1}, 60); }
+inline double shell_radiance(int depth) { return 1 - std::pow(0.8, depth + 1); }
+
 // render() as `camera` sees the scene: the Camera is made for the settings' image size.
 inline RenderOutput render_view(const Scene& scene, const CameraDesc& camera, const RenderSettings& s,
                                 const std::atomic<bool>* cancel = nullptr) {

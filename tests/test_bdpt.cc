@@ -58,19 +58,14 @@ TEST_CASE("bdpt equals path at max_depth 0, 1 and 2", "[render][bdpt]") {
 }
 
 TEST_CASE("bdpt furnace: inside a closed emitting Lambert sphere, depth k sees 1 - 0.8^(k+1)", "[render][bdpt][furnace]") {
-  SceneBuilder b;
-  ShapeDesc shell = sphere_shape(1, Transform(), matte(0.8f));
-  shell.emission = Rgb(0.2f);
-  shell.two_sided = true;
-  b.add_shape(shell);
-  const auto scene = b.flatten();
+  const auto scene = emitting_shell();
   for (const int depth : {1, 4}) {
     RenderSettings s = integrator_settings(IntegratorKind::Bdpt, 32, 32);
     s.max_depth = depth;
     s.rr_depth = 100;
-    const Image img = render_view(*scene, camera_at({0.2f, -0.1f, 0.3f}, {0, 0, 1}, 60), s).image;
+    const Image img = render_view(*scene, shell_camera(), s).image;
     INFO("depth " << depth);
-    CHECK(image_mean(img) == Approx(1 - std::pow(0.8, depth + 1)).epsilon(0.01));
+    CHECK(image_mean(img) == Approx(shell_radiance(depth)).epsilon(0.01));
   }
 }
 

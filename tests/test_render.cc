@@ -110,20 +110,15 @@ TEST_CASE("furnace: a Lambert sphere under a uniform infinite light renders its 
 }
 
 TEST_CASE("furnace: inside a closed emitting Lambert sphere, depth k sees 1 - 0.8^(k+1)", "[render][furnace]") {
-  SceneBuilder b;
-  ShapeDesc shell = sphere_shape(1, Transform(), matte(0.8f));
-  shell.emission = Rgb(0.2f);
-  shell.two_sided = true;
-  b.add_shape(shell);
-  const CameraDesc cam = camera_at({0.2f, -0.1f, 0.3f}, {0, 0, 1}, 60);
-  const auto scene = b.flatten();
+  const CameraDesc cam = shell_camera();
+  const auto scene = emitting_shell();
   RenderSettings s;
   s.width = s.height = 16;
   s.spp = 64;
   for (int k = 0; k <= 4; ++k) {
     s.max_depth = k;
     const Image img = render_view(*scene, cam, s).image;
-    const double expected = 1 - std::pow(0.8, k + 1);
+    const double expected = shell_radiance(k);
     INFO("max_depth " << k);
     CHECK(mean_channel(img, 0, 0, 16, 16) == Approx(expected).epsilon(0.01));
   }

@@ -67,20 +67,15 @@ TEST_CASE("vcm and ppm error against the reference falls with the iterations", "
 
 TEST_CASE("vcm and ppm furnace: inside a closed emitting Lambert sphere, depth k sees 1 - 0.8^(k+1)",
           "[render][vcm][furnace]") {
-  SceneBuilder b;
-  ShapeDesc shell = sphere_shape(1, Transform(), matte(0.8f));
-  shell.emission = Rgb(0.2f);
-  shell.two_sided = true;
-  b.add_shape(shell);
-  const auto scene = b.flatten();
+  const auto scene = emitting_shell();
   for (const IntegratorKind k : {IntegratorKind::Vcm, IntegratorKind::Ppm})
     for (const int depth : {1, 4}) {
       RenderSettings s = vcm_settings(k, 32, 32, 0.05f);
       s.max_depth = depth;
       s.rr_depth = 100;
-      const Image img = render_view(*scene, camera_at({0.2f, -0.1f, 0.3f}, {0, 0, 1}, 60), s).image;
+      const Image img = render_view(*scene, shell_camera(), s).image;
       INFO(integrator_name(k) << " depth " << depth);
-      CHECK(image_mean(img) == Approx(1 - std::pow(0.8, depth + 1)).epsilon(0.01));
+      CHECK(image_mean(img) == Approx(shell_radiance(depth)).epsilon(0.01));
     }
 }
 
