@@ -210,6 +210,7 @@ void open_torte_module(lua_State* L, const RunOptions& options) {
   open_gltf(L, torte_index);
   open_textures(L, torte_index);
   open_voxels(L, torte_index);
+  open_bench(L, torte_index);
   open_data(L, torte_index);
   open_run(L, torte_index, script_directory(options.script), options.quick, options.list_args);
   // `torte` is a global and also what require "torte" returns.

@@ -91,6 +91,7 @@ void open_meshes(lua_State* L, int torte_index);     // torte.mesh.*, torte.cloc
 void open_gltf(lua_State* L, int torte_index);       // torte.gltf.load (lua/bind_gltf.cc)
 void open_textures(lua_State* L, int torte_index);   // torte.texture.* (lua/bind_texture.cc)
 void open_voxels(lua_State* L, int torte_index);     // torte.voxel.*, torte.shape.voxels (lua/bind_voxel.cc)
+void open_bench(lua_State* L, int torte_index);      // torte.bench (lua/bind_bench.cc)
 void open_data(lua_State* L, int torte_index);       // torte.data.*: files, zlib/gzip, NBT, bit fields (lua/bind_data.cc)
 // torte.simd.*, torte.script_dir, torte.quick, under --list-args torte._list_args (lua/bind_run.cc).
 /// The scene flattened and built for rendering, with a progress display on stderr unless `quiet`

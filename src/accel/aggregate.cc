@@ -55,13 +55,13 @@ void Aggregate::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadr
   bounds_ = merge(root_.bounds(), instance_bvh_.bounds());
 }
 
-void Aggregate::intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
-  root_.intersect(rays, count, hits, coherent);
+void Aggregate::intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const {
+  root_.intersect(rays, count, hits, kernel);
   if (instances_ && !instances_->empty()) intersect_instances(rays, count, hits);
 }
 
-void Aggregate::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const {
-  root_.occluded(rays, count, blocked, coherent);
+void Aggregate::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const {
+  root_.occluded(rays, count, blocked, kernel);
   if (instances_ && !instances_->empty()) occluded_instances(rays, count, blocked);
 }
 

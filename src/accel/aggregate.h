@@ -51,10 +51,11 @@ class Aggregate {
   Bounds3f bounds() const { return bounds_; }
 
   /// Closest hits of rays [0, count) in queue order (Hit::instance = kNoHit for the root's shapes, else the
-  /// instance's index); `coherent` rays (neighbours in groups of 8) go through the packet kernels.
-  void intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const;
+  /// instance's index). `kernel` applies to the root's geometry; packet kernels need neighbouring rays in
+  /// aligned groups of their width. Instanced prototypes always trace single rays (binned rays are not coherent).
+  void intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const;
   /// blocked[i] = 1 when anything blocks ray i in (0, t_max), else 0.
-  void occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const;
+  void occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const;
   /// The hit's surface in world space (instances map points, normals and tangents to the world); `ray` is the
   /// world ray that was traced (voxel hits need it).
   SurfaceHit surface(const Ray& ray, const Hit& hit) const;

@@ -40,15 +40,15 @@ bool GeometrySet::occluded_one(const Ray& ray) const {
   return false;
 }
 
-void GeometrySet::intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
-  shapes_.intersect(rays, count, hits, coherent);
-  if (grid_count() > 0) intersect_grids(rays, count, hits, coherent);
+void GeometrySet::intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const {
+  shapes_.intersect(rays, count, hits, kernel);
+  if (grid_count() > 0) intersect_grids(rays, count, hits, kernel);
 }
 
 // Voxel grids after the triangles and quadrics, with t_max clipped to their hit: coherent rays in packets
 // (simd/voxel_packet.h), others one at a time (voxel/voxel_traverse.h).
-void GeometrySet::intersect_grids(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
-  if (coherent && count >= 16) {  // packets of 16 (camera rays come in tiles)
+void GeometrySet::intersect_grids(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const {
+  if (kernel != TraceKernel::kSingle && count >= 16) {  // packets of 16 (camera rays come in tiles)
     for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].intersect_coherent(rays, count, g, hits);
     return;
   }
@@ -58,10 +58,10 @@ void GeometrySet::intersect_grids(const RaySoA& rays, size_t count, Hit* hits, b
   }
 }
 
-void GeometrySet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const {
-  shapes_.occluded(rays, count, blocked, coherent);
+void GeometrySet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const {
+  shapes_.occluded(rays, count, blocked, kernel);
   if (grid_count() == 0) return;
-  if (coherent && count >= 16) {  // rays already blocked are skipped by the grids
+  if (kernel != TraceKernel::kSingle && count >= 16) {  // rays already blocked are skipped by the grids
     for (uint32_t g = 0; g < grid_count(); ++g) (*grids_)[g].occluded_coherent(rays, count, blocked);
     return;
   }

@@ -45,10 +45,10 @@ class GeometrySet {
   Bounds3f bounds() const { return bounds_; }
   bool empty() const { return primitive_count() == 0; }
 
-  // Closest hits (written from scratch; Hit::instance is kNoHit) and occlusion, for `count` rays; `coherent` rays
-  // go through the packet kernels.
-  void intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const;
-  void occluded(const RaySoA& rays, size_t count, uint8_t* occluded, bool coherent) const;
+  // Closest hits (written from scratch; Hit::instance is kNoHit) and occlusion, for `count` rays through
+  // `kernel`; voxel grids take packets of 16 for either packet kernel (at 16 rays or more).
+  void intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const;
+  void occluded(const RaySoA& rays, size_t count, uint8_t* occluded, TraceKernel kernel) const;
   // One ray: updates *hit when something closer than min(ray.t_max, hit->t) is hit.
   bool intersect_one(const Ray& ray, Hit* hit) const;
   bool occluded_one(const Ray& ray) const;
@@ -58,7 +58,7 @@ class GeometrySet {
   ShapeSet::TriangleMemory triangle_memory() const { return shapes_.triangle_memory(); }
 
  private:
-  void intersect_grids(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const;
+  void intersect_grids(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const;
   ShapeSet shapes_;
   const std::vector<VoxelGridAccel>* grids_ = nullptr;
   uint32_t object_base_ = 0;

@@ -17,6 +17,11 @@ struct Hit {
 };
 static_assert(sizeof(Hit) == 20);
 
+/// The traversal kernel a batch of rays takes: one ray at a time (the SIMD lanes test a node's children), or
+/// packets of 8 or 16 neighbouring rays (the lanes are rays). The render loop traces a tile's camera rays as
+/// kPacket8 and everything else as kSingle; torte.bench times each on any scene.
+enum class TraceKernel : uint8_t { kSingle = 0, kPacket8 = 8, kPacket16 = 16 };
+
 // Rays as structure of arrays, the form the SIMD kernels take (arrays, not vectors, cross the dispatch seam).
 struct RaySoA {
   const float *ox, *oy, *oz;

@@ -194,7 +194,7 @@ void Aggregate::intersect_instances(const RaySoA& rays, size_t count, Hit* hits)
                    // Single-ray kernels (16 rays set up at a time): a bin mixes instance spaces, so neighbours in
                    // it are not coherent enough for packets (measured slower on scenes/instancing.lua).
                    Hit* found = at_least(s.hits, n);
-                   (*prototypes_)[p]->geometry.intersect(local, n, found, false);
+                   (*prototypes_)[p]->geometry.intersect(local, n, found, TraceKernel::kSingle);
                    for (size_t j = 0; j < n; ++j) {
                      const WorkItem& w = s.binned[first + j];
                      Hit& h = hits[w.ray];
@@ -211,7 +211,7 @@ void Aggregate::occluded_instances(const RaySoA& rays, size_t count, uint8_t* bl
                  [&](uint32_t i) { return blocked[i] ? 0.0f : rays.t_max[i]; },
                  [&](uint32_t p, size_t first, size_t n, const RaySoA& local) {
                    uint8_t* b = at_least(s.blocked, n);
-                   (*prototypes_)[p]->geometry.occluded(local, n, b, false);
+                   (*prototypes_)[p]->geometry.occluded(local, n, b, TraceKernel::kSingle);
                    for (size_t j = 0; j < n; ++j) blocked[s.binned[first + j].ray] |= b[j];
                  });
 }

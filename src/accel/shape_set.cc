@@ -141,7 +141,7 @@ bool ShapeSet::intersect_one(const Ray& ray, Hit* hit) const {
   if (!(r.t_max > 0) || empty()) return false;
   const SingleRay one(r);
   Hit h;
-  intersect(one.soa(), 1, &h, false);
+  intersect(one.soa(), 1, &h, TraceKernel::kSingle);
   if (h.prim == kNoHit || !(h.t < hit->t)) return false;
   h.instance = hit->instance;
   *hit = h;
@@ -152,14 +152,14 @@ bool ShapeSet::occluded_one(const Ray& ray) const {
   if (empty()) return false;
   const SingleRay one(ray);
   uint8_t blocked = 0;
-  occluded(one.soa(), 1, &blocked, false);
+  occluded(one.soa(), 1, &blocked, TraceKernel::kSingle);
   return blocked != 0;
 }
 
-void ShapeSet::intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
+void ShapeSet::intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const {
   if (triangle_count() > 0) {
-    if (coherent) {
-      intersect_closest_packets(tri_bvh_, tri_leaves_, rays, count, hits, 8);
+    if (kernel != TraceKernel::kSingle) {
+      intersect_closest_packets(tri_bvh_, tri_leaves_, rays, count, hits, int(kernel));
     } else {
       intersect_closest(tri_bvh_, tri_leaves_, rays, count, hits);
     }
@@ -185,10 +185,10 @@ void ShapeSet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) c
   }
 }
 
-void ShapeSet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const {
+void ShapeSet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const {
   if (triangle_count() > 0) {
-    if (coherent) {
-      intersect_any_packets(tri_bvh_, tri_leaves_, rays, count, blocked, 8);
+    if (kernel != TraceKernel::kSingle) {
+      intersect_any_packets(tri_bvh_, tri_leaves_, rays, count, blocked, int(kernel));
     } else {
       intersect_any(tri_bvh_, tri_leaves_, rays, count, blocked);
     }

@@ -46,11 +46,11 @@ class ShapeSet {
   Bounds3f bounds() const { return bounds_; }
   bool empty() const { return primitive_count() == 0; }
 
-  /// Closest hits of `count` rays, written from scratch (a miss is Hit{}; Hit::instance stays kNoHit); `coherent`
-  /// rays go through the packet kernels.
-  void intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const;
+  /// Closest hits of `count` rays through `kernel`, written from scratch (a miss is Hit{}; Hit::instance stays
+  /// kNoHit). Quadrics are tested one ray at a time whatever the kernel.
+  void intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const;
   /// blocked[i] = 1 when something blocks ray i in (0, t_max), else 0.
-  void occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const;
+  void occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const;
   /// One ray: updates *hit (keeping its instance) when something closer than min(ray.t_max, hit->t) is hit.
   bool intersect_one(const Ray& ray, Hit* hit) const;
   bool occluded_one(const Ray& ray) const;

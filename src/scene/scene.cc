@@ -76,7 +76,7 @@ void Scene::release_positions() {
 
 bool Scene::intersect(Ray& ray, Hit* hit) const {
   Hit h;
-  accel_.intersect(SingleRay(ray).soa(), 1, &h, false);
+  accel_.intersect(SingleRay(ray).soa(), 1, &h, TraceKernel::kSingle);
   if (h.prim == kNoHit) return false;
   *hit = h;
   ray.t_max = h.t;
@@ -85,16 +85,16 @@ bool Scene::intersect(Ray& ray, Hit* hit) const {
 
 bool Scene::occluded(const Ray& ray) const {
   uint8_t blocked = 0;
-  accel_.occluded(SingleRay(ray).soa(), 1, &blocked, false);
+  accel_.occluded(SingleRay(ray).soa(), 1, &blocked, TraceKernel::kSingle);
   return blocked != 0;
 }
 
 void Scene::intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
-  accel_.intersect(rays, count, hits, coherent);
+  accel_.intersect(rays, count, hits, coherent ? TraceKernel::kPacket8 : TraceKernel::kSingle);
 }
 
 void Scene::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const {
-  accel_.occluded(rays, count, blocked, coherent);
+  accel_.occluded(rays, count, blocked, coherent ? TraceKernel::kPacket8 : TraceKernel::kSingle);
 }
 
 size_t Scene::accel_bytes() const { return accel_.accel_bytes(); }
