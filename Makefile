@@ -11,7 +11,7 @@ CXX_COMPILER ?= clang++
 CONFIGURE = cmake -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=$(CXX_COMPILER)
 
 .PHONY: all deps configure build demo test test-sanitize test-tsan bench bench-scalar-vs-simd bench-cycles \
-        bench-startup fuzz clean
+        bench-startup fuzz lua-stubs clean
 
 all: build
 
@@ -119,6 +119,10 @@ fuzz:
 	  -DTORTE_FUZZ=ON -DTORTE_BUILD_TESTS=OFF -DTORTE_BUILD_BENCH=OFF -S . -B $(FUZZ_BUILD) $(CMAKE_ARGS)
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target torte_fuzzers
 	FUZZ_ARGS='$(FUZZ_ARGS)' bash fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_HARNESSES)
+
+# The LuaLS stubs (lua/types/torte.lua) regenerated from docs/lua-api.md; `make test` checks they are current.
+lua-stubs: build
+	cd $(BUILD) && TORTE_UPDATE_LUA_STUBS=1 ./tests/torte_io_tests '[lua_api_stubs]'
 
 clean:
 	rm -rf $(BUILD) out

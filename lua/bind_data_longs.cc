@@ -59,11 +59,7 @@ int longs_index(lua_State* L) {
     return 1;
   }
   const char* key = lua_tostring(L, 2);
-  if (key && std::strcmp(key, "table") == 0) {
-    lua_pushcfunction(L, guarded<longs_table>);
-  } else if (key && std::strcmp(key, "unpack_bits") == 0) {
-    lua_pushcfunction(L, guarded<l_unpack_bits>);
-  } else {
+  if (!key || !push_method(L, 1, key)) {
     throw Error(std::string(kLongsName) + " has no field '" + (key ? key : "?") +
                 "' (index it with 1..#a; methods: table, unpack_bits)");
   }
@@ -189,6 +185,8 @@ void set_data_longs_functions(lua_State* L) {
   lua_setfield(L, -2, "__tostring");
   lua_pushstring(L, kLongsName);
   lua_setfield(L, -2, "__metatable");
+  const luaL_Reg methods[] = {{"table", guarded<longs_table>}, {"unpack_bits", guarded<l_unpack_bits>}, {nullptr, nullptr}};
+  set_methods(L, methods);
   lua_pop(L, 1);
   const luaL_Reg fns[] = {{"unpack_bits", guarded<l_unpack_bits>}, {nullptr, nullptr}};
   set_functions(L, fns);

@@ -127,14 +127,16 @@ bool push_image_field(lua_State* L, const RenderedImage& img, const std::string&
     }
     return true;
   }
-  if (key == "layer") {
-    lua_pushcfunction(L, guarded<image_layer>);
-    return true;
-  }
   return false;
 }
 
 void open_images(lua_State* L, int torte_index) {
+  // image:layer joins the methods open_render gave the image metatable.
+  luaL_getmetatable(L, LuaName<RenderedImage>::value);
+  lua_getfield(L, -1, "__methods");
+  lua_pushcfunction(L, guarded<image_layer>);
+  lua_setfield(L, -2, "layer");
+  lua_pop(L, 2);
   const luaL_Reg fns[] = {{"denoise", guarded<l_denoise>}, {nullptr, nullptr}};
   lua_pushvalue(L, torte_index);
   set_functions(L, fns);

@@ -165,16 +165,7 @@ int mesh_index(lua_State* L) {
     lua_pushboolean(L, mesh->has_normals());
   } else if (key == "has_uvs") {
     lua_pushboolean(L, mesh->has_uvs());
-  } else if (key == "subdivide") {
-    lua_pushcfunction(L, guarded<l_subdivide>);
-  } else if (key == "smooth_normals") {
-    lua_pushcfunction(L, guarded<mesh_smooth_normals>);
-  } else if (key == "bounds") {
-    lua_pushcfunction(L, guarded<mesh_bounds>);
-  } else if (key == "fit") {
-    lua_pushcfunction(L, guarded<mesh_fit>);
-  } else if (key == "save") {
-    lua_pushcfunction(L, guarded<mesh_save>);
+  } else if (push_method(L, 1, key)) {
   } else {
     throw Error("torte.mesh has no field '" + key +
                 "' (fields: triangles, vertices, has_normals, has_uvs; methods: subdivide, smooth_normals, bounds, fit, save)");
@@ -226,6 +217,10 @@ void open_meshes(lua_State* L, int torte_index) {
   lua_setfield(L, -2, "__index");
   lua_pushcfunction(L, guarded<mesh_tostring>);
   lua_setfield(L, -2, "__tostring");
+  const luaL_Reg methods[] = {{"subdivide", guarded<l_subdivide>}, {"smooth_normals", guarded<mesh_smooth_normals>},
+                              {"bounds", guarded<mesh_bounds>},    {"fit", guarded<mesh_fit>},
+                              {"save", guarded<mesh_save>},        {nullptr, nullptr}};
+  set_methods(L, methods);
   lua_pop(L, 2);
 
   const luaL_Reg fns[] = {{"load", guarded<l_load>}, {"subdivide", guarded<l_subdivide>}, {nullptr, nullptr}};

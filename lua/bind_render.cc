@@ -539,15 +539,8 @@ int image_index(lua_State* L) {
     lua_pushinteger(L, lua_Integer(img->stats.samples_done));
   } else if (key == "stages") {
     push_stages(L, img->stats.stages);
-  } else if (push_image_field(L, *img, key)) {
+  } else if (push_image_field(L, *img, key) || push_method(L, 1, key)) {
   } else {
-    static const luaL_Reg methods[] = {{"write", guarded<image_write>}, {"pixel", guarded<image_pixel>},
-                                       {"mean", guarded<image_mean>}, {nullptr, nullptr}};
-    for (const luaL_Reg* m = methods; m->name; ++m)
-      if (key == m->name) {
-        lua_pushcfunction(L, m->func);
-        return 1;
-      }
     throw Error("image has no field '" + key + "'");
   }
   return 1;
@@ -573,6 +566,9 @@ void open_render(lua_State* L, int torte_index) {
   lua_getmetatable(L, -1);
   lua_pushcfunction(L, guarded<image_index>);
   lua_setfield(L, -2, "__index");
+  const luaL_Reg image_methods[] = {{"write", guarded<image_write>}, {"pixel", guarded<image_pixel>},
+                                    {"mean", guarded<image_mean>}, {nullptr, nullptr}};
+  set_methods(L, image_methods);
   lua_pop(L, 2);
 
   const luaL_Reg fns[] = {{"scene", guarded<l_scene>},

@@ -465,8 +465,8 @@ int op_index(lua_State* L) {
   if (key == "type") lua_pushstring(L, lua_type_name(t->output));
   else if (key == "input") lua_pushstring(L, lua_type_name(t->input));
   else if (key == "kind") lua_pushstring(L, texture_kind_name(t->kind));
-  else if (key == "eval") lua_pushcfunction(L, guarded<l_eval>);
-  else
+  else if (push_method(L, 1, key)) {
+  } else
     throw Error("torte.texture has no field '" + key + "' (fields: type, input, kind; methods: eval)");
   return 1;
 }
@@ -530,6 +530,8 @@ void open_textures(lua_State* L, int torte_index) {
                            {"__div", guarded<op_div>},       {"__concat", guarded<op_concat>},
                            {nullptr, nullptr}};
   set_functions(L, meta);
+  const luaL_Reg methods[] = {{"eval", guarded<l_eval>}, {nullptr, nullptr}};
+  set_methods(L, methods);
   lua_pop(L, 2);
 
   const luaL_Reg fns[] = {{"constant", guarded<l_constant>},

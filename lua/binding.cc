@@ -1,5 +1,6 @@
 #include "binding.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 
@@ -270,7 +271,14 @@ std::vector<double> KwArgs::numbers(const char* key) {
   return out;
 }
 
+namespace {
+std::atomic<KeyObserver> key_observer{nullptr};
+}  // namespace
+
+void set_key_observer(KeyObserver observer) { key_observer.store(observer); }
+
 void KwArgs::finish() {
+  if (KeyObserver observe = key_observer.load()) observe(function_, read_);
   std::string unknown;
   bool found = false;  // not unknown.empty(): "" is a key too
   lua_pushnil(L_);
@@ -297,6 +305,31 @@ void KwArgs::finish() {
 }
 
 void set_functions(lua_State* L, const luaL_Reg* functions) { luaL_setfuncs(L, functions, 0); }
+
+void set_methods(lua_State* L, const luaL_Reg* methods) {
+  lua_newtable(L);
+  set_functions(L, methods);
+  lua_setfield(L, -2, "__methods");
+}
+
+bool push_method(lua_State* L, int idx, const std::string& key) {
+  const UserdataHeader* h = tagged_userdata(L, idx, nullptr);
+  if (!h) return false;
+  if (luaL_getmetatable(L, h->name) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    return false;
+  }
+  if (lua_getfield(L, -1, "__methods") != LUA_TTABLE) {
+    lua_pop(L, 2);
+    return false;
+  }
+  lua_pushlstring(L, key.data(), key.size());  // with its length: "save\0x" is not "save"
+  const bool found = lua_rawget(L, -2) != LUA_TNIL;
+  lua_replace(L, -3);  // the method (or nil) where the metatable was
+  lua_pop(L, 1);       // __methods
+  if (!found) lua_pop(L, 1);
+  return found;
+}
 
 void push_subtable(lua_State* L, int torte_index, const char* name) {
   if (lua_getfield(L, torte_index, name) != LUA_TTABLE) {

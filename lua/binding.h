@@ -170,6 +170,20 @@ Vec3f check_vec3(lua_State* L, int idx, const std::string& what);
 
 // Registers functions into the table at the top of the stack.
 void set_functions(lua_State* L, const luaL_Reg* functions);
+
+// ---- methods of types whose __index is a function (fields computed on access) -----------------------------
+// Their methods live in the metatable's `__methods` table, so one list serves lookup and the API reference's
+// check (tests/io/test_lua_api_doc.cc enumerates `__methods` and table `__index`es).
+/// Sets `__methods` of the metatable at the top of the stack to a table of `methods`.
+void set_methods(lua_State* L, const luaL_Reg* methods);
+/// Pushes method `key` of the torte userdata at idx, looked up in its type's own registered metatable (not the
+/// one a script may have given the value); returns false, pushing nothing, when the type has no such method.
+bool push_method(lua_State* L, int idx, const std::string& key);
+
+/// Called by KwArgs::finish with the function's name and every key it read, before unknown keys are rejected;
+/// the API reference's test records which keys each function accepts. Null (no observer) unless a test sets one.
+using KeyObserver = void (*)(const std::string& function, const std::set<std::string>& keys);
+void set_key_observer(KeyObserver observer);
 // Ensures torte.<name> exists as a table and leaves it on the stack (torte table must be at `torte_index`).
 void push_subtable(lua_State* L, int torte_index, const char* name);
 
