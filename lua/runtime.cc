@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <optional>
@@ -157,6 +158,13 @@ struct Run {
 };
 
 // The protected part of run_script: the libraries, the torte module, the prelude and the script itself.
+// A glTF model given where a script goes.
+bool is_model_file(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".gltf" || ext == ".glb";
+}
+
 int run_protected(lua_State* L) {
   const Run& run = *static_cast<const Run*>(lua_touserdata(L, 1));
   lua_settop(L, 0);
@@ -169,6 +177,16 @@ int run_protected(lua_State* L) {
   lua_pushstring(L, "torte.prelude");
   lua_call(L, 1, 0);
   make_api_strict(L);  // after the prelude, which adds torte.options and torte.save
+  if (is_model_file(run.options->script)) {  // torte model.glb: the embedded viewer renders it (torte.view_model)
+    lua_getglobal(L, "require");
+    lua_pushstring(L, "torte.view_model");
+    lua_call(L, 1, 1);
+    std::error_code ec;
+    const std::filesystem::path model = std::filesystem::absolute(run.options->script, ec);
+    lua_pushstring(L, (ec ? std::filesystem::path(run.options->script) : model).string().c_str());
+    lua_call(L, 1, 0);
+    return 0;
+  }
   if (load_text_file(L, run.options->script.c_str()) != LUA_OK) return lua_error(L);
   lua_getglobal(L, "torte");
   lua_getfield(L, -1, "args");

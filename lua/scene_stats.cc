@@ -14,6 +14,44 @@
 
 namespace torte::lua {
 
+namespace {
+
+double half_area(const Bounds3f& b) {
+  const Vec3f d = b.hi - b.lo;
+  return d.x * d.y + d.y * d.z + d.z * d.x;
+}
+
+// Depth, leaves and SAH cost of a wide BVH by one walk over its nodes (child bounds live in the parent).
+template <int N>
+void tree_statistics(const WideBvh<N>& bvh, SceneStatistics* s) {
+  if (bvh.nodes.empty()) return;
+  const double root_area = std::max(double(half_area(bvh.bounds)), 1e-30);
+  struct Entry {
+    uint32_t node, depth;
+    double area;
+  };
+  std::vector<Entry> stack{{0, 1, root_area}};
+  while (!stack.empty()) {
+    const Entry e = stack.back();
+    stack.pop_back();
+    s->depth = std::max(s->depth, e.depth);
+    s->sah_cost += e.area / root_area;  // visiting the node tests its N children at once
+    const WideNode<N>& n = bvh.nodes[e.node];
+    for (int c = 0; c < N; ++c) {
+      if (n.child[c] == kEmptyChild) continue;
+      const Bounds3f b{{n.lo_x[c], n.lo_y[c], n.lo_z[c]}, {n.hi_x[c], n.hi_y[c], n.hi_z[c]}};
+      if (is_leaf_child(n.child[c])) {
+        ++s->leaves;
+        s->sah_cost += half_area(b) / root_area * n.leaf_count[c];
+      } else {
+        stack.push_back({n.child[c], e.depth + 1, half_area(b)});
+      }
+    }
+  }
+}
+
+}  // namespace
+
 SceneStatistics scene_statistics(const Scene& scene, double build_seconds, bool reused) {
   SceneStatistics s;
   s.primitives = scene.primitive_count();
@@ -25,6 +63,17 @@ SceneStatistics scene_statistics(const Scene& scene, double build_seconds, bool 
   s.lights = scene.lights.size();
   const ShapeSet::TriangleMemory m = scene.accel().root().triangle_memory();
   s.nodes = m.nodes / sizeof(WideNode<kDefaultBvhWidth>);
+  tree_statistics(scene.accel().root().triangle_bvh(), &s);
+  const GeometrySet& root = scene.accel().root();
+  s.voxel_grids = root.grid_count();
+  for (uint32_t g = 0; g < root.grid_count(); ++g) {
+    s.voxel_nodes += root.grid(g)->tree->nodes().size();
+    s.voxels += root.grid(g)->tree->stats().voxels;
+  }
+  uint64_t voxel_bytes = 0;
+  for (uint32_t g = 0; g < root.grid_count(); ++g) voxel_bytes += root.grid(g)->bytes();
+  if (s.voxels > 0) s.voxel_bytes_per_voxel = double(voxel_bytes) / double(s.voxels);
+  s.bounds = scene.accel().bounds();
   // Mesh triples and normals count each source once (as the render summary does).
   size_t indices = 0, normals = 0;
   std::unordered_set<const void*> seen;
@@ -55,9 +104,15 @@ std::string format_scene_statistics(const SceneStatistics& s) {
                 (unsigned long long)s.primitives, (unsigned long long)s.triangles, (unsigned long long)s.instances,
                 (unsigned long long)s.groups, (unsigned long long)s.placed_primitives, (unsigned long long)s.lights);
   out += buf;
-  std::snprintf(buf, sizeof buf, "  triangle BVH: %llu nodes of width %d\n", (unsigned long long)s.nodes,
-                kDefaultBvhWidth);
+  std::snprintf(buf, sizeof buf, "  triangle BVH: %llu nodes of width %d, %llu leaves, depth %u, SAH cost %.1f\n",
+                (unsigned long long)s.nodes, kDefaultBvhWidth, (unsigned long long)s.leaves, s.depth, s.sah_cost);
   out += buf;
+  if (s.voxel_grids > 0) {
+    std::snprintf(buf, sizeof buf, "  voxel grids: %llu, %llu kd-tree nodes, %llu solid voxels, %.2f bytes per voxel\n",
+                  (unsigned long long)s.voxel_grids, (unsigned long long)s.voxel_nodes, (unsigned long long)s.voxels,
+                  s.voxel_bytes_per_voxel);
+    out += buf;
+  }
   std::snprintf(buf, sizeof buf,
                 "  bytes per triangle: nodes %.1f, leaves %.1f, indices %.1f, index map %.1f, normals %.1f; "
                 "total %.1f\n",
@@ -94,6 +149,26 @@ int scene_stats(lua_State* L) {
   set_int("placed_primitives", s.placed_primitives);
   set_int("lights", s.lights);
   set_int("nodes", s.nodes);
+  set_int("leaves", s.leaves);
+  set_int("depth", s.depth);
+  set("sah_cost", s.sah_cost);
+  set_int("voxel_grids", s.voxel_grids);
+  set_int("voxel_nodes", s.voxel_nodes);
+  set_int("voxels", s.voxels);
+  set("voxel_bytes_per_voxel", s.voxel_bytes_per_voxel);
+  const auto push_vec = [&](Vec3f v) {
+    lua_createtable(L, 3, 0);
+    for (int i = 0; i < 3; ++i) {
+      lua_pushnumber(L, v[i]);
+      lua_rawseti(L, -2, i + 1);
+    }
+  };
+  lua_createtable(L, 0, 2);
+  push_vec(s.bounds.lo);
+  lua_setfield(L, -2, "min");
+  push_vec(s.bounds.hi);
+  lua_setfield(L, -2, "max");
+  lua_setfield(L, -2, "bounds");
   lua_newtable(L);
   set("nodes", s.node_bytes);
   set("leaves", s.leaf_bytes);

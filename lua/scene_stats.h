@@ -15,6 +15,15 @@ struct SceneStatistics {
   uint64_t instances = 0, groups = 0, placed_primitives = 0;  // instancing: what the instances place
   uint64_t lights = 0;
   uint64_t nodes = 0;                        // wide nodes of the top-level triangle BVH
+  uint64_t leaves = 0;                       // its leaves (triangle groups)
+  uint32_t depth = 0;                        // its depth in nodes (a root alone: 1)
+  // Its surface-area cost, traversal and triangle tests weighted 1 each: the expected node visits plus triangle
+  // tests of a random ray through the scene's bounds (MacDonald and Booth 1990, one node visit per wide node).
+  double sah_cost = 0;
+  // Voxel grids of the top level: how many, their kd-tree nodes, solid voxels, bytes per voxel of the trees.
+  uint64_t voxel_grids = 0, voxel_nodes = 0, voxels = 0;
+  double voxel_bytes_per_voxel = 0;
+  Bounds3f bounds;                           // of everything the scene places
   // Bytes per top-level triangle: wide nodes, leaf vertices, mesh indices (each source once), the index map
   // from leaf order to meshes, vertex normals.
   double node_bytes = 0, leaf_bytes = 0, index_bytes = 0, map_bytes = 0, normal_bytes = 0;

@@ -56,6 +56,9 @@ class GeometrySet {
   SurfaceHit surface(const Hit& hit, const Ray* ray = nullptr) const;
   size_t accel_bytes() const;
   ShapeSet::TriangleMemory triangle_memory() const { return shapes_.triangle_memory(); }
+  const WideBvh<kDefaultBvhWidth>& triangle_bvh() const { return shapes_.triangle_bvh(); }
+  /// The set's voxel grids (none when it has none).
+  const VoxelGridAccel* grid(uint32_t g) const { return &(*grids_)[g]; }
 
  private:
   void intersect_grids(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const;

@@ -62,6 +62,8 @@ class ShapeSet {
   struct TriangleMemory {
     size_t nodes = 0, leaves = 0, index_map = 0;  // wide nodes; leaf vertices + leaf starts; tri_ref_ + mesh_first_
   };
+  /// The triangle BVH itself (statistics: depth, leaves, SAH cost).
+  const WideBvh<kDefaultBvhWidth>& triangle_bvh() const { return tri_bvh_; }
   TriangleMemory triangle_memory() const {
     return {tri_bvh_.nodes.size() * sizeof(tri_bvh_.nodes[0]), tri_leaves_.memory_bytes(),
             (tri_ref_.size() + mesh_first_.size()) * sizeof(uint32_t)};

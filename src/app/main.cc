@@ -32,10 +32,11 @@ void on_sigint(int) {
   std::signal(SIGINT, SIG_DFL);
 }
 
-const char kUsageLine[] = "usage: torte [options] scene.lua [key=value ...]";
+const char kUsageLine[] = "usage: torte [options] scene.lua|model.gltf|model.glb [key=value ...]";
 const std::string kDescription =
     "Runs a Lua scene script. key=value pairs reach the script as the table torte.args (and as `...`); values\n"
-    "that look like numbers or true/false are converted. Options may come before or after the script.";
+    "that look like numbers or true/false are converted. Options may come before or after the script. A glTF\n"
+    "file in the script's place is rendered directly (docs/formats.md; torte --list-args model.glb).";
 const std::string kFooter =
     "Ctrl-C stops a render and still writes the image with the samples done so far; it stops Lua code and\n"
     "scene building too (exit code 130). A second Ctrl-C kills torte.";
@@ -191,7 +192,7 @@ int main(int argc, char** argv) {
       ->option_text("DIR")
       ->allow_extra_args(false);
   app.add_option("script", g.positionals, "the scene script, then its key=value arguments")
-      ->option_text("scene.lua [key=value ...]");
+      ->option_text("scene.lua|model.glb [key=value ...]");
 
   try {
     app.parse(argc, argv);

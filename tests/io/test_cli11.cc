@@ -100,7 +100,7 @@ TEST_CASE("cli11: --help is generated and lists every option", "[cli][cli11]") {
   Cli11Dir dir("help");
   const Result r = run_ok(dir, {"--help"});
   CHECK(r.err.empty());
-  CHECK_THAT(r.out, Catch::StartsWith("usage: torte [options] scene.lua [key=value ...]"));
+  CHECK_THAT(r.out, Catch::StartsWith("usage: torte [options] scene.lua|model.gltf|model.glb [key=value ...]"));
   for (const char* opt : {"--outfile", "-o", "--quick", "--list-args", "--stats", "--simd", "--version", "--spp",
                           "--seed", "--threads", "--aovs", "--denoise", "--exposure", "--tonemap", "--checkpoint",
                           "--resume", "--max-memory", "--lua-memory", "--lua-instructions", "--sandbox",

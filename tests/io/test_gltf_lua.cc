@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -170,4 +172,61 @@ TEST_CASE("gltf lua: damaged files are one-line errors naming the file", "[gltf]
   }
   const std::string script = dir.write("missing.lua", "local g = torte.gltf.load('nothing.glb')\n");
   CHECK_THAT(check_error(run(dir, {script})), Catch::Contains("nothing.glb"));
+}
+
+// `torte model.glb`: the embedded viewer (lua/torte/view_model.lua) renders the file with its camera or a framing
+// one, adds a light rig when the file has no light, and takes the shipped scenes' arguments.
+TEST_CASE("gltf lua: torte model.glb renders the file directly", "[gltf]") {
+  TempDir dir("gltf", "view");
+  Gltf unlit = make(5123, "");
+  // Without its point light the file has no light of its own: the viewer adds the sky and the sun.
+  unlit.json.replace(unlit.json.find("[0, 2, 3]"), 9, "[0, 2]");
+  dir.write("quad.glb", glb(make(5123, "")));
+  dir.write("unlit.glb", glb(unlit));
+  // The rendered image through a texture lookup: the quad's middle against the corner.
+  const std::string probe = dir.write("probe.lua", R"(
+local t = torte.texture.image{file = arg_file}
+local function lum(u, v) local c = t:eval{uv = {u, v}} return c[1] + c[2] + c[3] end
+print(("%.4f %.4f"):format(lum(0.5, 0.5), lum(0.02, 0.02)))
+)");
+  auto centre_and_corner = [&](const std::string& exr) {
+    const std::string script = dir.write("run_probe.lua", "arg_file = '" + exr + "'\n" + read_file(probe));
+    const Result r = run(dir, {"--quiet", script});
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    double centre = 0, corner = 0;
+    std::istringstream(r.out) >> centre >> corner;
+    return std::pair{centre, corner};
+  };
+  {
+    const Result r = run(dir, {"--quiet", "quad.glb", "width=24", "height=16", "spp=4", "output=file_camera.exr"});
+    INFO(r.err);
+    CHECK(r.code == 0);
+    CHECK(std::filesystem::exists(dir.path / "file_camera.exr"));
+    CHECK(std::filesystem::exists(dir.path / "file_camera.png"));
+  }
+  {  // camera=0 frames the model: the quad is in the middle, the sky in the corner
+    const Result r = run(dir, {"--quiet", "unlit.glb", "camera=0", "width=24", "height=16", "spp=8", "output=framed.exr"});
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const auto [centre, corner] = centre_and_corner("framed.exr");
+    CHECK(corner > 0);             // the viewer's sky: the file has no light
+    CHECK(centre != Approx(corner).epsilon(0.05));  // something other than sky in the middle
+  }
+  {  // sky=off and no light of the file's own: black, and torte warns about it
+    const Result r = run(dir, {"unlit.glb", "sky=off", "width=8", "height=8", "spp=1", "output=dark.exr"});
+    CHECK(r.code == 0);
+    CHECK_THAT(r.err, Catch::Contains("warning"));
+  }
+  CHECK_THAT(check_error(run(dir, {"quad.glb", "camera=3", "width=8", "height=8"})),
+             Catch::Contains("has 1 camera"));
+  CHECK_THAT(check_error(run(dir, {"quad.glb", "sky=maybe"})), Catch::Contains("argument 'sky' must be auto, on or off"));
+  CHECK_THAT(check_error(run(dir, {"quad.glb", "spp=four"})), Catch::Contains("argument 'spp' must be a number"));
+  dir.write("broken.glb", "glTF not really");
+  CHECK_THAT(check_error(run(dir, {"broken.glb"})), Catch::Contains("broken.glb"));
+  {
+    const Result r = run(dir, {"--list-args", "quad.glb"});
+    CHECK(r.code == 0);
+    CHECK_THAT(r.out, Catch::Contains("sky_strength"));
+  }
 }
