@@ -11,6 +11,10 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <string_view>
+#include <unistd.h>
 
 #include "core/text.h"
 #include "file_access.h"
@@ -25,10 +29,52 @@ namespace {
 
 constexpr const char* kFn = "torte.gltf.load";
 
-// Images are opened by path through OpenImageIO when a material uses them; tinygltf need not decode them.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                void*) {
+// tinygltf hands over every image's encoded bytes (from a file, a data: URI or a buffer view of a .glb); they are
+// kept as they are (not decoded) and written to a file only when the image is embedded: OpenImageIO's texture
+// cache opens textures by path and reads their tiles when it needs them.
+bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  image->image.assign(bytes, bytes + std::max(size, 0));
+  image->as_is = true;
   return true;
+}
+
+// A directory in the system's temporary directory for the embedded images of this process, removed at exit.
+class EmbeddedImageDir {
+ public:
+  ~EmbeddedImageDir() {
+    std::error_code ec;
+    if (!dir_.empty()) std::filesystem::remove_all(dir_, ec);
+  }
+  // Writes `bytes` once per content and returns the file's path (the extension tells OpenImageIO the format).
+  std::string write(const std::vector<unsigned char>& bytes, const std::string& extension) {
+    std::lock_guard lock(mutex_);
+    if (dir_.empty()) {
+      dir_ = std::filesystem::temp_directory_path() / ("torte-gltf-" + std::to_string(::getpid()));
+      std::filesystem::create_directories(dir_);
+    }
+    const size_t h = std::hash<std::string_view>()(
+        std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    const std::filesystem::path file = dir_ / (std::to_string(h) + "-" + std::to_string(bytes.size()) + extension);
+    if (!std::filesystem::exists(file)) {
+      const std::filesystem::path partial = file.string() + ".partial";
+      std::ofstream out(partial, std::ios::binary);
+      out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+      out.close();
+      if (!out) throw Error("cannot write an embedded image to " + escape_text(partial.string()));
+      std::filesystem::rename(partial, file);
+    }
+    return file.string();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::filesystem::path dir_;
+};
+
+EmbeddedImageDir& embedded_images() {
+  static EmbeddedImageDir dir;
+  return dir;
 }
 
 struct Importer {
@@ -95,26 +141,51 @@ struct Importer {
     }
   }
 
-  TexturePtr texture(int index, bool color) const {
+  // Texture `index` of the file (nullptr for -1), its channels from `first_channel` on as R, G, B. An image that
+  // cannot be read is a warning and no texture (the material's factor alone), as other renderers do.
+  std::shared_ptr<const ImageSource> image_source(int index, bool color, int first_channel = 0) const {
     if (index < 0) return nullptr;
     if (size_t(index) >= model.textures.size()) fail("no texture " + std::to_string(index));
     const int source = model.textures[size_t(index)].source;
     if (source < 0 || size_t(source) >= model.images.size()) fail("texture " + std::to_string(index) + " has no image");
     const tinygltf::Image& image = model.images[size_t(source)];
-    if (image.uri.empty() || image.uri.starts_with("data:")) {
-      warn("image " + std::to_string(source) + " is embedded; only image files beside the model are read (ignored)");
-      return nullptr;
-    }
-    const std::string file = (std::filesystem::path(dir) / image.uri).string();
+    ImageTextureOptions o;
+    if (!color) o.color_space = ImageTextureOptions::ColorSpace::Linear;
+    o.first_channel = first_channel;
     try {
-      check_read(L, file, kFn);
-      ImageTextureOptions o;
-      if (!color) o.color_space = ImageTextureOptions::ColorSpace::Linear;
-      return texture::image(open_image_texture(file, o));
+      std::string file;
+      if (!image.uri.empty() && !image.uri.starts_with("data:")) {
+        file = (std::filesystem::path(dir) / image.uri).string();
+        check_read(L, file, kFn);
+      } else {
+        if (image.image.empty()) {
+          warn("image " + std::to_string(source) + " holds no data (the texture is ignored)");
+          return nullptr;
+        }
+        const std::string mime = !image.mimeType.empty() ? image.mimeType : image.uri.substr(5, image.uri.find(';') - 5);
+        const std::string ext = mime == "image/png" ? ".png" : mime == "image/jpeg" ? ".jpg" : mime == "image/webp" ? ".webp" : "";
+        if (ext.empty()) {
+          warn("image " + std::to_string(source) + " has the unsupported type " + quote_text(mime) + " (ignored)");
+          return nullptr;
+        }
+        file = embedded_images().write(image.image, ext);
+      }
+      return open_image_texture(file, o);
     } catch (const Error& e) {
       warn(std::string(e.what()) + " (the texture is ignored)");
       return nullptr;
     }
+  }
+  TexturePtr texture(int index, bool color) const {
+    auto src = image_source(index, color);
+    return src ? texture::image(src) : nullptr;
+  }
+  // One channel of a linear texture as a float texture times `factor` (glTF's metallic-roughness image).
+  TexturePtr channel(int index, int c, float factor) const {
+    auto src = image_source(index, false, c);
+    if (!src) return nullptr;
+    TexturePtr t = texture::image_scalar(src);
+    return factor == 1.0f ? t : texture::scale(t, factor);
   }
 
   void read_materials() {
@@ -125,22 +196,34 @@ struct Importer {
         base = Rgb(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2]));
       base = Rgb(std::clamp(base.r, 0.0f, 1.0f), std::clamp(base.g, 0.0f, 1.0f), std::clamp(base.b, 0.0f, 1.0f));
       const float rough = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
-      auto desc = std::make_shared<MaterialDesc>();
+      const float metal = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
       TexturePtr tex = texture(pbr.baseColorTexture.index, true);
-      if (pbr.metallicFactor >= 0.5) {
-        // A conductor whose normal-incidence Fresnel reflectance is the base colour: k = 0 and
-        // eta = (1 + sqrt(F0)) / (1 - sqrt(F0)) per channel (the base colour texture is not used).
-        desc->type = MaterialType::Conductor;
-        auto eta = [](float f0) { const float s = std::sqrt(std::min(f0, 0.98f)); return (1 + s) / (1 - s); };
-        desc->eta_rgb = {Rgb(eta(base.r), eta(base.g), eta(base.b)), nullptr};
-        desc->k = {Rgb(0), nullptr};
-      } else {
-        desc->type = MaterialType::CoatedDiffuse;  // glTF's dielectric: diffuse under an IOR 1.5 coat
-        desc->color = {base, tex};
-        desc->eta = {1.5f, nullptr};
-      }
+      if (tex && base != Rgb(1)) tex = texture::multiply(tex, texture::constant(base));
+      // glTF packs roughness in G and metalness in B of one linear image, each scaling its factor.
+      const int mr = pbr.metallicRoughnessTexture.index;
+      TexturePtr rough_tex = channel(mr, 1, rough), metal_tex = channel(mr, 2, metal);
       // glTF's alpha = roughness^2 is torte's remapped roughness.
-      desc->roughness.u = desc->roughness.v = {std::max(rough, 0.001f), nullptr};
+      RoughnessInput roughness;
+      roughness.u = roughness.v = {std::max(rough, 0.001f), rough_tex};
+      auto dielectric = std::make_shared<MaterialDesc>();
+      dielectric->type = MaterialType::CoatedDiffuse;  // glTF's dielectric: diffuse under an IOR 1.5 coat
+      dielectric->color = {base, tex};
+      dielectric->eta = {1.5f, nullptr};
+      dielectric->roughness = roughness;
+      // A conductor whose normal-incidence Fresnel reflectance is the base colour factor: k = 0 and
+      // eta = (1 + sqrt(F0)) / (1 - sqrt(F0)) per channel (not expressible as a texture of the base colour).
+      auto conductor = std::make_shared<MaterialDesc>();
+      conductor->type = MaterialType::Conductor;
+      auto eta = [](float f0) { const float s = std::sqrt(std::min(f0, 0.98f)); return (1 + s) / (1 - s); };
+      conductor->eta_rgb = {Rgb(eta(base.r), eta(base.g), eta(base.b)), nullptr};
+      conductor->k = {Rgb(0), nullptr};
+      conductor->roughness = roughness;
+      // Metallic between 0 and 1 (or a texture of it): a stochastic mix of the two, unbiased for glTF's blend.
+      std::shared_ptr<MaterialDesc> desc;
+      if (metal_tex) desc = make_mix(dielectric, conductor, {metal, metal_tex});
+      else if (metal <= 0) desc = dielectric;
+      else if (metal >= 1) desc = conductor;
+      else desc = make_mix(dielectric, conductor, {metal, nullptr});
       materials.push_back(desc);
       Rgb e;
       if (m.emissiveFactor.size() >= 3)
@@ -312,7 +395,7 @@ struct Importer {
 
   void load() {
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(skip_image, nullptr);
+    loader.SetImageLoader(keep_image_bytes, nullptr);
     std::string err, warning;
     const bool binary = path.size() >= 4 && (path.ends_with(".glb") || path.ends_with(".GLB"));
     const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warning, path)

@@ -31,6 +31,8 @@ struct ImageTextureOptions {
   enum class Filter { Closest, Bilinear, Trilinear } filter = Filter::Trilinear;
   // Auto: 8-bit images are sRGB-encoded colour unless the file says it is linear; others are linear.
   enum class ColorSpace { Auto, Srgb, Linear } color_space = ColorSpace::Auto;
+  // The file's channel looked up as R (the next two as G and B): glTF packs roughness in G and metalness in B.
+  int first_channel = 0;
 };
 
 }  // namespace torte

@@ -72,7 +72,8 @@ class OiioImageSource final : public ImageSource {
  public:
   OiioImageSource(std::string path, OIIO::TextureSystem::TextureHandle* handle, const ImageTextureOptions& options,
                   bool decode_srgb, int width, int height)
-      : path_(std::move(path)), handle_(handle), decode_srgb_(decode_srgb), width_(width), height_(height) {
+      : path_(std::move(path)), handle_(handle), decode_srgb_(decode_srgb), first_channel_(options.first_channel),
+        width_(width), height_(height) {
     switch (options.wrap) {
       case ImageTextureOptions::Wrap::Periodic: wrap_ = OIIO::TextureOpt::WrapPeriodic; break;
       case ImageTextureOptions::Wrap::Clamp: wrap_ = OIIO::TextureOpt::WrapClamp; break;
@@ -100,6 +101,7 @@ class OiioImageSource final : public ImageSource {
     opt.swrap = opt.twrap = wrap_;
     opt.mipmode = mip_;
     opt.interpmode = interp_;
+    opt.firstchannel = first_channel_;
     // An isotropic footprint: the screen-space derivatives stand in for the st-space filter width. OIIO's t
     // grows downwards (row 0 is the top), uv's v upwards, hence 1 - t.
     const float w = std::isfinite(filter_width) && filter_width > 0 ? filter_width : 0.0f;
@@ -139,6 +141,7 @@ class OiioImageSource final : public ImageSource {
   OIIO::TextureOpt::MipMode mip_ = OIIO::TextureOpt::MipModeTrilinear;
   OIIO::TextureOpt::InterpMode interp_ = OIIO::TextureOpt::InterpBilinear;
   bool decode_srgb_;
+  int first_channel_;
   int width_, height_;
   mutable std::mutex failure_mutex_;
   mutable std::atomic<bool> failed_{false};
@@ -210,6 +213,9 @@ std::shared_ptr<const ImageSource> open_image_texture(const std::string& path, c
     throw Error("cannot read image texture '" + escape_text(path) + "'" + (why.empty() ? std::string() : ": " + why));
   }
   check_texture_size(path, spec);
+  if (options.first_channel < 0 || options.first_channel >= spec.nchannels)
+    throw Error("image texture '" + escape_text(path) + "' has " + std::to_string(spec.nchannels) +
+                " channels; channel " + std::to_string(options.first_channel) + " was asked for");
   preload(ts, handle, path);
   bool srgb = false;
   switch (options.color_space) {
