@@ -224,6 +224,9 @@ struct Importer {
       else if (metal <= 0) desc = dielectric;
       else if (metal >= 1) desc = conductor;
       else desc = make_mix(dielectric, conductor, {metal, nullptr});
+      // The normal texture: +x right and +y up in the image, which is along torte's dp/dv (v = 1 - glTF's v).
+      if (TexturePtr normals = texture(m.normalTexture.index, false))
+        desc = make_normal_map(desc, {Rgb(0.5f, 0.5f, 1.0f), normals}, float(m.normalTexture.scale));
       materials.push_back(desc);
       Rgb e;
       if (m.emissiveFactor.size() >= 3)

@@ -173,11 +173,17 @@ int l_mix(lua_State* L) {
 int l_bump(lua_State* L) {
   KwArgs kw(L, 1, "torte.material.bump");
   auto inner = kw.object<MaterialDesc>("material");
+  const bool mapped = kw.has("normal_map");
+  if (mapped && kw.has("height")) kw.fail("normal_map", "and 'height' cannot both be given");
   FloatInput height = float_input(kw, "height", 0);
+  ColorInput map = color_input(kw, "normal_map", Rgb(0.5f, 0.5f, 1.0f));
   const float scale = float(kw.number("scale", 1));
   kw.finish();
   if (!std::isfinite(scale)) kw.fail("scale", "must be finite");
-  push_object(L, nested(kw, [&] { return make_bump(std::move(inner), std::move(height), scale); }));
+  push_object(L, nested(kw, [&] {
+    return mapped ? make_normal_map(std::move(inner), std::move(map), scale)
+                  : make_bump(std::move(inner), std::move(height), scale);
+  }));
   return 1;
 }
 

@@ -58,7 +58,7 @@ function torte_scene:add(obj, ...) end
 ---@return torte.scene
 function torte_scene:frame(transform, function_, g) end
 
----Flattens and builds the scene as `torte.render` would (the build is cached: a render of the unchanged scene reuses it) and returns its statistics: `primitives`, `triangles`, `instances`, `groups`, `placed_primitives`, `lights`, `nodes` (triangle BVH nodes), `bytes_per_triangle = {nodes, leaves, indices, index_map, normals}`, `geometry_bytes`, `accel_bytes`, `build_seconds`, `reused` (boolean) and `peak_memory` (bytes). Build errors are raised as `scene:stats: <message>`.
+---Flattens and builds the scene as `torte.render` would (the build is cached: a render of the unchanged scene reuses it) and returns its statistics: `primitives`, `triangles`, `instances`, `groups`, `placed_primitives`, `lights`, `nodes`, `leaves` and `depth` of the top-level triangle BVH, its `sah_cost` (expected node visits plus triangle tests of a random ray through the scene's bounds), `bytes_per_triangle = {nodes, leaves, indices, index_map, normals}`, `voxel_grids`, `voxel_nodes`, `voxels` (solid) and `voxel_bytes_per_voxel` of the top level's voxel grids, `bounds = {min = {x, y, z}, max = {x, y, z}}`, `geometry_bytes`, `accel_bytes`, `build_seconds`, `reused` (boolean) and `peak_memory` (bytes). Build errors are raised as `scene:stats: <message>`.
 ---@return table
 function torte_scene:stats() end
 
@@ -161,7 +161,7 @@ function torte.material.rough_glass(args) end
 ---@return torte.material
 function torte.material.mix(args) end
 
----`material` with its shading normal perturbed by the height field `scale * height` along the normal (finite differences along dp/du and dp/dv). A constant `height` leaves the normal unchanged.
+---`material` with its shading normal perturbed by the height field `scale * height` along the normal (finite differences along dp/du and dp/dv; a constant `height` leaves the normal unchanged), or by a tangent-space `normal_map`: rgb = (n + 1) / 2 with +x along dp/du and +y along dp/dv (OpenGL's and glTF's convention), x and y times `scale`; (0.5, 0.5, 1) leaves the normal unchanged, a map pointing below the surface is ignored.
 ---@param args torte.material.bump.args
 ---@return torte.material
 function torte.material.bump(args) end
@@ -736,7 +736,8 @@ function torte.clock() end
 ---@class torte.material.bump.args
 ---@field material torte.material the wrapped material
 ---@field height? number|torte.texture height field (default 0)
----@field scale? number height multiplier (scene units) (default 1)
+---@field normal_map? number|number[]|torte.texture tangent-space normals (default none)
+---@field scale? number height multiplier (scene units), or the normal map's x and y factor (default 1)
 
 ---@class torte.texture.constant.args
 ---@field value any the value

@@ -92,10 +92,14 @@ struct MixParams {
   FloatParam amount;  // 0 = a, 1 = b; fractional values pick b with that probability
   MaterialRef a, b;
 };
+// A Bump perturbs the shading normal by a height texture, or (normal_mapped) by a tangent-space normal map
+// whose x and y are multiplied by `scale` (glTF's normalTexture.scale).
 struct BumpParams {
   FloatParam height;  // displacement along the shading normal, in world units (times scale)
   float scale = 1;
   MaterialRef inner;
+  bool normal_mapped = false;
+  ColorParam normal_map{Rgb(0.5f, 0.5f, 1.0f)};  // rgb = (n_tangent + 1) / 2; tangent along dp/du, bitangent dp/dv
 };
 
 // One array per material type (structure of arrays across types).

@@ -46,6 +46,13 @@ std::shared_ptr<MaterialDesc> make_mix(std::shared_ptr<const MaterialDesc> a, st
   return m;
 }
 
+std::shared_ptr<MaterialDesc> make_normal_map(std::shared_ptr<const MaterialDesc> inner, ColorInput map, float scale) {
+  auto m = make_bump(std::move(inner), {}, scale);
+  m->normal_map = std::move(map);
+  m->normal_mapped = true;
+  return m;
+}
+
 std::shared_ptr<MaterialDesc> make_bump(std::shared_ptr<const MaterialDesc> inner, FloatInput height, float scale) {
   if (!inner) throw Error("a bump needs the material it wraps");
   const int nesting = 1 + inner->nesting;
@@ -130,6 +137,10 @@ MaterialRef MaterialFlattener::add(const MaterialDesc& d, int level) {
     case MaterialType::Bump: {
       if (!d.a) throw Error("internal: bump material without an inner material");
       BumpParams p{textures_.add(d.height), d.bump_scale, add(*d.a, level + 1)};
+      if (d.normal_mapped) {
+        p.normal_mapped = true;
+        p.normal_map = textures_.add(d.normal_map);
+      }
       ref = push(tables_.bump, d.type, p);
       break;
     }

@@ -34,6 +34,8 @@ struct MaterialDesc {
   std::shared_ptr<const MaterialDesc> a, b;
   FloatInput amount{0.5f, nullptr};
   FloatInput height;
+  ColorInput normal_map;        // a Bump by a normal map (make_normal_map) instead of `height`
+  bool normal_mapped = false;
   float bump_scale = 1;
   int nesting = 0;  // Mix/Bump levels above the deepest leaf below (0 for a shaded material); set by make_mix/make_bump
 };
@@ -44,6 +46,8 @@ struct MaterialDesc {
 std::shared_ptr<MaterialDesc> make_mix(std::shared_ptr<const MaterialDesc> a, std::shared_ptr<const MaterialDesc> b,
                                        FloatInput amount);
 std::shared_ptr<MaterialDesc> make_bump(std::shared_ptr<const MaterialDesc> inner, FloatInput height, float scale);
+/// A Bump of `inner` by a tangent-space normal map (OpenGL convention: +y along dp/dv), x and y times `scale`.
+std::shared_ptr<MaterialDesc> make_normal_map(std::shared_ptr<const MaterialDesc> inner, ColorInput map, float scale);
 
 /// Checks a scene's flattened tables: every Mix/Bump reference names an existing row, and Mix/Bump rows nest at
 /// most kMaxMaterialNesting levels without cycles, so resolve_material (render/material_resolve.h) always ends on

@@ -25,7 +25,7 @@ local materials = {
   M.metal{eta = {0.2, 0.9, 1.1}, k = {3.9, 2.4, 2.1}, roughness = 0, distribution = "beckmann"},
   M.mirror{color = 0.9}, M.glass{eta = 1.5}, M.glass{thin = true, color = {0.9, 1, 0.9}},
   M.rough_glass{eta = 1.33, roughness = 0.3}, M.mix{a = M.mirror{}, b = M.matte{}, amount = 0.3},
-  M.bump{material = M.matte{}, height = 0.01},
+  M.bump{material = M.matte{}, height = 0.01}, M.bump{material = M.plastic{}, normal_map = {0.7, 0.4, 0.9}},
 }
 local scene = torte.scene()
 for i, m in ipairs(materials) do
@@ -61,6 +61,7 @@ TEST_CASE("materials: bad parameters name the function, the key and the line", "
       {"M.mix{a = M.matte{}, b = 3}", {"torte.material.mix", "'b'"}},
       {"M.mix{a = M.matte{}, b = M.matte{}, amount = 2}", {"torte.material.mix", "'amount'"}},
       {"M.bump{height = 1}", {"torte.material.bump", "'material'"}},
+      {"M.bump{material = M.matte{}, height = 1, normal_map = 0.5}", {"torte.material.bump", "'normal_map' and 'height'"}},
       {"M.plastic{colour = 0.5}", {"torte.material.plastic", "'colour'"}},
       {"M.plastic{roughness = torte.texture.uv{}}", {"torte.material.plastic", "'roughness'", "scalar"}},
       {"M.matte{color = torte.texture.uv{}}", {"torte.material.matte", "'color'"}},
@@ -86,4 +87,48 @@ TEST_CASE("materials: a bad parameter stops the script with one line and a non-z
   const std::string line = check_error(run_torte(dir, {path}, 30));
   CHECK_THAT(line, Catch::Contains(path + ":3:"));
   CHECK_THAT(line, Catch::Contains("'eta'"));
+}
+
+// A normal map tilts the shading normal: a constant map (0.5 + 0.5 sin a, 0.5, 0.5 + 0.5 cos a) turns it by a
+// towards dp/du, so a Lambertian quad lit straight on is cos(a) as bright; x and y scale by `scale`; the flat
+// map (0.5, 0.5, 1) changes nothing; and +y follows dp/dv.
+TEST_CASE("materials: a normal map turns the shading normal in the dp/du, dp/dv frame", "[lua][material]") {
+  MaterialDir dir("normal_map");
+  const std::string script = dir.write("normal_map.lua", R"(
+local torte = require "torte"
+local M = torte.material
+-- A unit quad in z = 0 facing +z with u along +x and v along +y, lit along -z; an orthographic camera on +z.
+local function brightness(material, light_dir)
+  local scene = torte.scene()
+  scene:add(torte.shape.mesh{positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}, indices = {0, 1, 2, 0, 2, 3},
+                             uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, material = material})
+  scene:add(torte.light.directional{direction = light_dir or {0, 0, -1}, irradiance = 1})
+  local img = torte.render{scene = scene, camera = torte.camera.orthographic{eye = {0, 0, 5}, look_at = {0, 0, 0}, extent = 1},
+                           width = 8, height = 8, spp = 1, max_depth = 1}
+  return img:mean()
+end
+local a = math.rad(60)
+local matte = M.matte{color = 0.5}
+local flat = brightness(matte)
+local tilted_map = {0.5 + 0.5 * math.sin(a), 0.5, 0.5 + 0.5 * math.cos(a)}
+assert(math.abs(flat - 0.5 / math.pi) < 1e-3, "flat " .. flat)
+assert(math.abs(brightness(M.bump{material = matte, normal_map = {0.5, 0.5, 1}}) - flat) < 1e-6, "identity map")
+local tilted = brightness(M.bump{material = matte, normal_map = tilted_map})
+assert(math.abs(tilted / flat - math.cos(a)) < 1e-3, "tilted by 60 degrees: " .. tilted / flat)
+-- scale = 0 flattens the tilt away
+assert(math.abs(brightness(M.bump{material = matte, normal_map = tilted_map, scale = 0}) - flat) < 1e-6, "scale 0")
+-- Light from +x (travelling towards -x and -z): the normal turned towards +x (dp/du) sees it head on.
+local oblique = {-math.sin(a), 0, -math.cos(a)}
+assert(math.abs(brightness(M.bump{material = matte, normal_map = tilted_map}, oblique) / flat - 1) < 1e-3, "towards +u")
+-- The same tilt towards +y (green) faces a light from +y.
+local up_map = {0.5, 0.5 + 0.5 * math.sin(a), 0.5 + 0.5 * math.cos(a)}
+local from_up = {0, -math.sin(a), -math.cos(a)}
+assert(math.abs(brightness(M.bump{material = matte, normal_map = up_map}, from_up) / flat - 1) < 1e-3, "towards +v")
+print("ok")
+)");
+  const Result r = run_torte(dir, {"--quiet", script}, 60);
+  check_no_crash(r);
+  INFO("stderr: " << r.err);
+  CHECK(r.code == 0);
+  CHECK(r.out == "ok\n");
 }
