@@ -146,3 +146,27 @@ TEST_CASE("gltf materials: the metallic-roughness image's B channel is metalness
   file("rough_metal.glb", 255, 255, "1");
   CHECK(rgb_of(middle_pixel(dir, "rough_metal.glb", light))[0] > 10 * std::max(metal, 1e-4));
 }
+
+TEST_CASE("gltf materials: the normal texture tilts the shading normal, its scale the tilt", "[gltf]") {
+  TempDir dir("gltf_mat", "normal");
+  const std::string light = "scene:add(torte.light.directional{direction = {0, 0, -1}, irradiance = 3})";
+  // (0.5 + 0.5 sin 60, 0.5, 0.5 + 0.5 cos 60): the normal turned 60 degrees towards +u.
+  const std::string tilted_png = solid_png(236, 128, 191);
+  auto file = [&](const char* name, const char* normal) {
+    Gltf q = make(5123, "");
+    const std::string image = add_buffer_image(q, tilted_png);
+    q = textured(q, std::string(R"("pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1],
+                "metallicFactor": 0, "roughnessFactor": 1})") + normal, image, 1);
+    dir.write(name, glb(q));
+  };
+  file("flat.glb", "");
+  file("tilted.glb", R"(, "normalTexture": {"index": 0})");
+  file("unscaled.glb", R"(, "normalTexture": {"index": 0, "scale": 0})");
+  const double flat = rgb_of(middle_pixel(dir, "flat.glb", light))[0];
+  const double tilted = rgb_of(middle_pixel(dir, "tilted.glb", light))[0];
+  const double unscaled = rgb_of(middle_pixel(dir, "unscaled.glb", light))[0];
+  CHECK(flat > 0.2);
+  CHECK(tilted < 0.75 * flat);  // about cos 60 of the diffuse part
+  CHECK(tilted > 0.2 * flat);
+  CHECK(unscaled == Approx(flat).epsilon(0.02));
+}
