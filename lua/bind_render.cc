@@ -124,6 +124,16 @@ int scene_add(lua_State* L) {
   return 1;  // the scene, so calls can chain
 }
 
+// A filter's own range errors ("box filter radius must be ...") prefixed with the function that was called.
+template <class Make>
+Filter checked_filter(const KwArgs& kw, Make&& make) {
+  try {
+    return make();
+  } catch (const Error& e) {
+    throw Error(kw.function() + ": " + e.what());
+  }
+}
+
 Filter make_filter(lua_State* L, const char* fn, FilterKind kind) {
   if (lua_isnoneornil(L, 1)) {
     lua_settop(L, 0);
@@ -134,23 +144,23 @@ Filter make_filter(lua_State* L, const char* fn, FilterKind kind) {
     case FilterKind::Box: {
       const float r = float(kw.number("radius", 0.5));
       kw.finish();
-      return Filter::box(r);
+      return checked_filter(kw, [&] { return Filter::box(r); });
     }
     case FilterKind::Triangle: {
       const float r = float(kw.number("radius", 1));
       kw.finish();
-      return Filter::triangle(r);
+      return checked_filter(kw, [&] { return Filter::triangle(r); });
     }
     case FilterKind::Gaussian: {
       const float r = float(kw.number("radius", 1.5)), sigma = float(kw.number("sigma", 0.5));
       kw.finish();
-      return Filter::gaussian(r, sigma);
+      return checked_filter(kw, [&] { return Filter::gaussian(r, sigma); });
     }
     case FilterKind::Mitchell: {
       const float r = float(kw.number("radius", 2)), b = float(kw.number("b", 1.0 / 3)),
                   c = float(kw.number("c", 1.0 / 3));
       kw.finish();
-      return Filter::mitchell(r, b, c);
+      return checked_filter(kw, [&] { return Filter::mitchell(r, b, c); });
     }
   }
   throw Error("internal: unknown filter");

@@ -20,6 +20,7 @@
 #include <map>
 
 #include "file_access.h"
+#include "origin.h"
 #include "types.h"
 #include "voxel/voxel_shape.h"
 
@@ -157,6 +158,7 @@ int grid_define(lua_State* L) {
     def.emission = kw.rgb("emission", Rgb(0));
     if (!(def.emission.r >= 0 && def.emission.g >= 0 && def.emission.b >= 0))
       kw.fail("emission", "must be a non-negative radiance {r, g, b}");
+    if (def.emission.max_component() > kMaxEmission) kw.fail("emission", "must be at most 1e20 per channel");
     auto all = kw.object<MaterialDesc>("material", true);
     for (auto& f : def.faces) f = all;
     kw.push("faces");
@@ -254,7 +256,14 @@ int l_shape_voxels(lua_State* L) {
 }
 
 int l_grid(lua_State* L) {
-  if (!lua_isnoneornil(L, 1)) {
+  if (!lua_isnoneornil(L, 1)) {  // an empty table is accepted; the grid takes no keys
+    if (lua_istable(L, 1)) {
+      lua_pushnil(L);
+      if (lua_next(L, 1) != 0) {
+        const std::string key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : luaL_typename(L, -2);
+        throw Error("torte.voxel.grid takes no keys (got '" + key + "'); fill the grid with grid:set or grid:set_chunk");
+      }
+    }
     KwArgs kw(L, 1, "torte.voxel.grid");
     kw.finish();
   }

@@ -17,6 +17,8 @@ std::optional<SettingsProblem> find_settings_problem(const RenderSettings& s) {
     return SettingsProblem{"spp", "must be in [1, " + std::to_string(kMaxSpp) + "], got " + std::to_string(s.spp)};
   if (s.max_depth < 0 || s.max_depth > 10000)
     return SettingsProblem{"max_depth", "must be in [0, 10000], got " + std::to_string(s.max_depth)};
+  if (s.rr_depth < 0)
+    return SettingsProblem{"rr_depth", "must be a non-negative number of bounces, got " + std::to_string(s.rr_depth)};
   if (s.tile_size <= 0 || s.tile_size > 1024)
     return SettingsProblem{"tile_size", "must be in [1, 1024], got " + std::to_string(s.tile_size)};
   if (s.vpl_sets < 1 || s.vpl_sets > 65536) return SettingsProblem{"vpl_sets", "must be in [1, 65536]"};
