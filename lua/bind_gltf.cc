@@ -143,7 +143,8 @@ struct Importer {
 
   // Texture `index` of the file (nullptr for -1), its channels from `first_channel` on as R, G, B. An image that
   // cannot be read is a warning and no texture (the material's factor alone), as other renderers do.
-  std::shared_ptr<const ImageSource> image_source(int index, bool color, int first_channel = 0) const {
+  std::shared_ptr<const ImageSource> image_source(int index, bool color, int first_channel = 0,
+                                                  bool quiet = false) const {
     if (index < 0) return nullptr;
     if (size_t(index) >= model.textures.size()) fail("no texture " + std::to_string(index));
     const int source = model.textures[size_t(index)].source;
@@ -172,7 +173,7 @@ struct Importer {
       }
       return open_image_texture(file, o);
     } catch (const Error& e) {
-      warn(std::string(e.what()) + " (the texture is ignored)");
+      if (!quiet) warn(std::string(e.what()) + " (the texture is ignored)");
       return nullptr;
     }
   }
@@ -227,6 +228,23 @@ struct Importer {
       // The normal texture: +x right and +y up in the image, which is along torte's dp/dv (v = 1 - glTF's v).
       if (TexturePtr normals = texture(m.normalTexture.index, false))
         desc = make_normal_map(desc, {Rgb(0.5f, 0.5f, 1.0f), normals}, float(m.normalTexture.scale));
+      // Outermost, so it applies to whatever material this became. alphaMode MASK: a cut-out where the base
+      // colour's alpha (factor times the texture's A) is below alphaCutoff; BLEND: present with probability alpha
+      // (unbiased for the blend, and needs no sorting).
+      if (m.alphaMode == "MASK" || m.alphaMode == "BLEND") {
+        const float factor = pbr.baseColorFactor.size() >= 4 ? std::clamp(float(pbr.baseColorFactor[3]), 0.0f, 1.0f) : 1.0f;
+        TexturePtr alpha;  // images without an alpha channel are opaque
+        if (auto src = image_source(pbr.baseColorTexture.index, false, 3, true)) {
+          alpha = texture::image_scalar(src);
+          if (factor != 1.0f) alpha = texture::scale(alpha, factor);
+        }
+        auto masked = std::make_shared<MaterialDesc>(*desc);
+        masked->alpha_masked = true;
+        masked->alpha = {factor, alpha};
+        masked->alpha_cutoff = m.alphaMode == "MASK" ? std::clamp(float(m.alphaCutoff), 0.0f, 1.0f) : 0.5f;
+        masked->alpha_stochastic = m.alphaMode == "BLEND";
+        desc = masked;
+      }
       materials.push_back(desc);
       Rgb e;
       if (m.emissiveFactor.size() >= 3)

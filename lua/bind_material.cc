@@ -170,6 +170,25 @@ int l_mix(lua_State* L) {
   return 1;
 }
 
+// A cut-out: `material` where alpha >= cutoff, nothing elsewhere (or, stochastic, present with probability alpha).
+int l_mask(lua_State* L) {
+  KwArgs kw(L, 1, "torte.material.mask");
+  auto inner = kw.object<MaterialDesc>("material");
+  FloatInput alpha = float_input(kw, "alpha", 1);
+  const double cutoff = kw.number("cutoff", 0.5);
+  const bool stochastic = kw.boolean("stochastic", false);
+  kw.finish();
+  if (!alpha.texture && !(alpha.value >= 0 && alpha.value <= 1)) kw.fail("alpha", "must be in [0, 1]");
+  if (!(cutoff >= 0 && cutoff <= 1)) kw.fail("cutoff", "must be in [0, 1]");
+  auto m = std::make_shared<MaterialDesc>(*inner);
+  m->alpha_masked = true;
+  m->alpha = std::move(alpha);
+  m->alpha_cutoff = float(cutoff);
+  m->alpha_stochastic = stochastic;
+  push_object(L, std::move(m));
+  return 1;
+}
+
 int l_bump(lua_State* L) {
   KwArgs kw(L, 1, "torte.material.bump");
   auto inner = kw.object<MaterialDesc>("material");
@@ -199,7 +218,7 @@ void open_materials(lua_State* L, int torte_index) {
                           {"rough_glass", guarded<l_rough_glass>},
                           {"mix", guarded<l_mix>},
                           {"bump", guarded<l_bump>},
-                          {nullptr, nullptr}};
+                          {"mask", guarded<l_mask>}, {nullptr, nullptr}};
   push_subtable(L, torte_index, "material");
   set_functions(L, fns);
   lua_pop(L, 1);

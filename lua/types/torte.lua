@@ -166,6 +166,11 @@ function torte.material.mix(args) end
 ---@return torte.material
 function torte.material.bump(args) end
 
+---A cut-out: `material` where `alpha >= cutoff` and no surface at all elsewhere, for camera, extension and shadow rays alike (leaves, fences, glTF's alphaMode MASK). With `stochastic = true` the surface is present with probability `alpha` instead (glTF's BLEND: unbiased for the blend, no sorting), decided per hit. A masked material cannot be given to an emitting shape. Cut-out layers cost a ray an extra trace each (at most 64 are passed).
+---@param args torte.material.mask.args
+---@return torte.material
+function torte.material.mask(args) end
+
 ---A constant: `float` for a number, `color` for `{r, g, b}`.
 ---@param args torte.texture.constant.args
 ---@return torte.texture
@@ -738,6 +743,12 @@ function torte.clock() end
 ---@field height? number|torte.texture height field (default 0)
 ---@field normal_map? number|number[]|torte.texture tangent-space normals (default none)
 ---@field scale? number height multiplier (scene units), or the normal map's x and y factor (default 1)
+
+---@class torte.material.mask.args
+---@field material torte.material the material where the surface is present
+---@field alpha? number|torte.texture coverage (default 1)
+---@field cutoff? number alpha below this is cut out (not with `stochastic`) (default 0.5)
+---@field stochastic? boolean present with probability alpha instead of the cutoff (default false)
 
 ---@class torte.texture.constant.args
 ---@field value any the value

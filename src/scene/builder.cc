@@ -31,6 +31,19 @@ struct SceneBuilder::Flattening {
     static const MaterialDesc kDefault{};
     return materials.add(m ? *m : kDefault);
   }
+  // The object's entry in Scene::alpha_masks (one per masked material), or -1.
+  std::map<const MaterialDesc*, int32_t> alpha_of;
+  int32_t alpha_mask(const ShapeDesc& s) {
+    const MaterialDesc* m = s.material.get();
+    if (!m || !m->alpha_masked) return -1;
+    if (!s.emission.is_black())
+      throw Error(shape_name(s) + ": an emitting shape cannot have a cut-out (masked) material");
+    if (auto it = alpha_of.find(m); it != alpha_of.end()) return it->second;
+    const int32_t index = int32_t(scene.alpha_masks.size());
+    scene.alpha_masks.push_back({textures.add(m->alpha), m->alpha_cutoff, m->alpha_stochastic});
+    alpha_of.emplace(m, index);
+    return index;
+  }
 
   // Meshes come first in a set's object numbering, then quadrics (see GeometrySet).
   static std::vector<const ShapeDesc*> ordered(const std::vector<ShapeDesc>& shapes) {
@@ -232,7 +245,7 @@ struct SceneBuilder::Flattening {
         proto->grids.push_back(voxel_grid(*s, false));
       else
         place(*s, proto->meshes, proto->quadrics);
-      objects.push_back({material(s->material), -1});
+      objects.push_back({material(s->material), -1, alpha_mask(*s)});
     }
     const uint32_t index = uint32_t(scene.prototypes.size());
     scene.prototypes.push_back(std::move(proto));
@@ -399,12 +412,13 @@ std::shared_ptr<Scene> SceneBuilder::flatten(ProgressCounter* progress) const {
     const uint32_t object = uint32_t(scene->objects.size());
     if (s->kind == ShapeDesc::Kind::Voxel) {
       scene->grids.push_back(f.voxel_grid(*s, true));
-      scene->objects.push_back({f.material(s->material), -1});
+      scene->objects.push_back({f.material(s->material), -1, f.alpha_mask(*s)});
       continue;
     }
     Flattening::place(*s, scene->meshes, scene->quadrics);
     SceneObject obj;
     obj.material = f.material(s->material);
+    obj.alpha_mask = f.alpha_mask(*s);
     if (!s->emission.is_black()) {
       Light light;
       light.kind = LightKind::Area;

@@ -35,6 +35,11 @@ struct MaterialDesc {
   FloatInput amount{0.5f, nullptr};
   FloatInput height;
   ColorInput normal_map;        // a Bump by a normal map (make_normal_map) instead of `height`
+  // A cut-out (torte.material.mask): the surface is absent where alpha < alpha_cutoff (Scene::alpha_masks).
+  bool alpha_masked = false;
+  bool alpha_stochastic = false;
+  FloatInput alpha{1.0f, nullptr};
+  float alpha_cutoff = 0.5f;
   bool normal_mapped = false;
   float bump_scale = 1;
   int nesting = 0;  // Mix/Bump levels above the deepest leaf below (0 for a shaded material); set by make_mix/make_bump

@@ -3,10 +3,13 @@
 #include <algorithm>
 
 #include <cmath>
+#include <cstring>
+#include <vector>
 #include <unordered_set>
 
 #include "core/error.h"
 #include "core/huge_pages.h"
+#include "core/rng.h"
 #include "geometry/triangle.h"
 #include "scene/material_desc.h"
 
@@ -91,10 +94,105 @@ bool Scene::occluded(const Ray& ray) const {
 
 void Scene::intersect(const RaySoA& rays, size_t count, Hit* hits, bool coherent) const {
   accel_.intersect(rays, count, hits, coherent ? TraceKernel::kPacket8 : TraceKernel::kSingle);
+  if (!alpha_masks.empty()) pass_cut_outs(rays, count, hits);
 }
 
 void Scene::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, bool coherent) const {
   accel_.occluded(rays, count, blocked, coherent ? TraceKernel::kPacket8 : TraceKernel::kSingle);
+  if (!alpha_masks.empty()) occluded_past_cut_outs(rays, count, blocked);
+}
+
+// ---- alpha masks ----------------------------------------------------------------------------------------------
+// The SIMD kernels test triangles without callbacks, so cut-outs are applied to their results: a hit on a cut-out
+// point is traced again from just past it, and a blocked shadow ray is checked by closest hits through the
+// cut-outs. Scenes without masks never get here.
+
+namespace {
+
+constexpr int kMaxAlphaLayers = 64;  // cut-out layers a ray passes; the next hit counts as opaque
+
+struct RayBatch {
+  std::vector<float> ox, oy, oz, dx, dy, dz, t_max;
+  void push(const Ray& r) {
+    ox.push_back(r.o.x), oy.push_back(r.o.y), oz.push_back(r.o.z);
+    dx.push_back(r.d.x), dy.push_back(r.d.y), dz.push_back(r.d.z);
+    t_max.push_back(r.t_max);
+  }
+  void clear() {
+    for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_max}) v->clear();
+  }
+  RaySoA soa() const { return {ox.data(), oy.data(), oz.data(), dx.data(), dy.data(), dz.data(), t_max.data()}; }
+};
+
+uint32_t float_bits(float f) {
+  uint32_t u;
+  std::memcpy(&u, &f, 4);
+  return u;
+}
+
+}  // namespace
+
+bool Scene::cut_out(const Ray& r, const Hit& h) const {
+  const SurfaceHit s = surface(r, h);
+  const int32_t m = objects[s.object].alpha_mask;
+  if (m < 0) return false;
+  const AlphaMask& a = alpha_masks[size_t(m)];
+  const float alpha = textures.eval(a.alpha, TextureContext{s.p, s.ns, s.uv, s.dpdu, s.dpdv, 0});
+  if (!a.stochastic) return alpha < a.cutoff;
+  uint64_t key = 0;
+  for (float f : {s.p.x, s.p.y, s.p.z, r.d.x, r.d.y, r.d.z}) key = mix_bits(key ^ float_bits(f));
+  const float u = float(key >> 40) * 0x1p-24f;
+  return u >= alpha;
+}
+
+void Scene::pass_cut_outs(const RaySoA& rays, size_t count, Hit* hits) const {
+  std::vector<uint32_t> pending;
+  for (size_t i = 0; i < count; ++i)
+    if (hits[i].prim != kNoHit && cut_out(ray_at(rays, i), hits[i])) pending.push_back(uint32_t(i));
+  RayBatch next;
+  std::vector<float> start;  // where each continuation starts along its original ray
+  std::vector<Hit> found;
+  for (int layer = 0; layer < kMaxAlphaLayers && !pending.empty(); ++layer) {
+    next.clear();
+    start.clear();
+    for (uint32_t i : pending) {
+      const Ray r = ray_at(rays, i);
+      const SurfaceHit s = surface(Ray{r.o, r.d, hits[i].t}, hits[i]);
+      const Vec3f o = offset_origin(s.p, s.ng, r.d);  // just past the surface, on the side the ray goes on to
+      const float t0 = dot(o - r.o, r.d) / dot(r.d, r.d);
+      start.push_back(t0);
+      next.push({o, r.d, std::max(0.0f, r.t_max - t0)});
+    }
+    found.assign(pending.size(), Hit{});
+    accel_.intersect(next.soa(), pending.size(), found.data(), TraceKernel::kSingle);
+    std::vector<uint32_t> still;
+    for (size_t k = 0; k < pending.size(); ++k) {
+      Hit& h = hits[pending[k]];
+      if (found[k].prim == kNoHit || !(next.t_max[k] > 0)) {
+        h = Hit{};
+        continue;
+      }
+      h = found[k];
+      h.t += start[k];
+      if (cut_out(ray_at(rays, pending[k]), h)) still.push_back(pending[k]);
+    }
+    pending.swap(still);
+  }
+}
+
+void Scene::occluded_past_cut_outs(const RaySoA& rays, size_t count, uint8_t* blocked) const {
+  RayBatch blocked_rays;
+  std::vector<uint32_t> index;
+  for (size_t i = 0; i < count; ++i)
+    if (blocked[i]) {
+      blocked_rays.push(ray_at(rays, i));
+      index.push_back(uint32_t(i));
+    }
+  if (index.empty()) return;
+  std::vector<Hit> hits(index.size());
+  accel_.intersect(blocked_rays.soa(), index.size(), hits.data(), TraceKernel::kSingle);
+  pass_cut_outs(blocked_rays.soa(), index.size(), hits.data());
+  for (size_t k = 0; k < index.size(); ++k) blocked[index[k]] = hits[k].prim != kNoHit;
 }
 
 size_t Scene::accel_bytes() const { return accel_.accel_bytes(); }

@@ -25,6 +25,16 @@ namespace torte {
 struct SceneObject {
   MaterialRef material;
   int32_t area_light = -1;  // index into Scene::lights, -1 if the object does not emit
+  int32_t alpha_mask = -1;  // index into Scene::alpha_masks, -1 if the object is opaque
+};
+
+/// Cut-outs (torte.material.mask, glTF's alphaMode): where `alpha` is below `cutoff` the surface is not there,
+/// for every ray (camera, extension and shadow rays pass it). `stochastic`: present with probability alpha
+/// instead (glTF's BLEND), decided by a hash of the hit so the same ray decides the same way.
+struct AlphaMask {
+  FloatParam alpha{1.0f};
+  float cutoff = 0.5f;
+  bool stochastic = false;
 };
 
 // SurfaceEmission (an override's emission) and EmitterView are in light/light.h.
@@ -59,6 +69,7 @@ class Scene {
   std::vector<std::unique_ptr<Prototype>> prototypes;
   std::vector<Instance> instances;
   MaterialTables materials;
+  std::vector<AlphaMask> alpha_masks;
   TextureTable textures;
   std::vector<Light> lights;
   Distribution1D light_selection;  // light selection proportional to power (light paths; NEE with "power")
@@ -101,6 +112,11 @@ class Scene {
 
  private:
   void release_positions();
+  // Alpha masks: whether hit h of ray r is on a cut-out point; closest hits moved past cut-out points (rays
+  // traced again from just beyond them, at most kMaxAlphaLayers times).
+  bool cut_out(const Ray& r, const Hit& h) const;
+  void pass_cut_outs(const RaySoA& rays, size_t count, Hit* hits) const;
+  void occluded_past_cut_outs(const RaySoA& rays, size_t count, uint8_t* blocked) const;
   Aggregate accel_;  // both levels of tracing; the forwards above are its seam to the renderer
   Bounds3f bounds_;
   Vec3f center_;

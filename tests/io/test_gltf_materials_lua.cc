@@ -170,3 +170,27 @@ TEST_CASE("gltf materials: the normal texture tilts the shading normal, its scal
   CHECK(tilted > 0.2 * flat);
   CHECK(unscaled == Approx(flat).epsilon(0.02));
 }
+
+TEST_CASE("gltf materials: alphaMode MASK cuts out below alphaCutoff, BLEND is present with probability alpha", "[gltf]") {
+  TempDir dir("gltf_mat", "alpha");
+  const std::string sky = "scene:add(torte.light.infinite{radiance = 1})";
+  auto file = [&](const char* name, const std::string& extra) {
+    Gltf q = make(5123, "");
+    q.json.replace(q.json.find("[0.8, 0.05, 0.05, 1]"), 20, "[0.8, 0.05, 0.05, 0.2]");
+    q.json.replace(q.json.find("[0, 2, 3]"), 9, "[0, 2]");
+    q.json.replace(q.json.find("\"name\": \"red\","), 14, "\"name\": \"red\"," + extra);
+    dir.write(name, glb(q));
+  };
+  file("opaque.glb", "");                                   // alphaMode OPAQUE: alpha is ignored
+  file("mask.glb", R"( "alphaMode": "MASK",)");             // 0.2 < the default cutoff 0.5: cut out
+  file("mask_low.glb", R"( "alphaMode": "MASK", "alphaCutoff": 0.1,)");
+  file("blend.glb", R"( "alphaMode": "BLEND",)");
+  const double opaque = rgb_of(middle_pixel(dir, "opaque.glb", sky))[1];
+  const double mask = rgb_of(middle_pixel(dir, "mask.glb", sky))[1];
+  const double mask_low = rgb_of(middle_pixel(dir, "mask_low.glb", sky))[1];
+  const double blend = rgb_of(middle_pixel(dir, "blend.glb", sky))[1];
+  CHECK(opaque < 0.5);                           // the red quad's green under the white sky
+  CHECK(mask == Approx(1).epsilon(0.01));        // the sky through the cut-out
+  CHECK(mask_low == Approx(opaque).epsilon(0.02));
+  CHECK(blend == Approx(0.2 * opaque + 0.8).epsilon(0.05));
+}

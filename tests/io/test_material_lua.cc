@@ -132,3 +132,63 @@ print("ok")
   CHECK(r.code == 0);
   CHECK(r.out == "ok\n");
 }
+
+// Cut-outs (torte.material.mask): a quad between a floor and a light from above, seen from between them (its
+// shadow) and from above (the quad itself or the floor through it), for every kind of ray and integrator.
+TEST_CASE("materials: mask cuts a surface out for camera, extension and shadow rays", "[lua][material]") {
+  MaterialDir dir("mask");
+  const std::string script = dir.write("mask.lua", R"(
+local torte = require "torte"
+local M = torte.material
+local function quad(y, half, material)
+  return torte.shape.mesh{positions = {{-half, y, -half}, {half, y, -half}, {half, y, half}, {-half, y, half}},
+                          indices = {0, 2, 1, 0, 3, 2}, uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, material = material}
+end
+-- eye_y 0.5: under the blocker, the floor's shadow; 5: above it, the blocker (reflectance 0.1) or the floor (0.5).
+local function mean(blocker, eye_y, integrator)
+  local scene = torte.scene()
+  scene:add(quad(0, 2, M.matte{color = 0.5}))
+  if blocker then scene:add(quad(1, 3, blocker)) end
+  -- Far above: irradiance 1 on the floor under it (bdpt connects to point lights, not to directional ones).
+  scene:add(torte.light.point{position = {0, 50, 0}, intensity = 2500})
+  local camera = torte.camera.perspective{eye = {0, eye_y, 0}, look_at = {0, 0, 0}, up = {0, 0, 1}, fov = 20}
+  local img = torte.render{scene = scene, camera = camera, width = 16, height = 16, spp = 16, max_depth = 3,
+                           integrator = integrator or "path"}
+  return (img:mean())
+end
+local dark = M.matte{color = 0.1}
+local lit = 0.5 / math.pi
+local function near(a, b, tol, what) assert(math.abs(a - b) <= tol, ("%s: %.5f, expected %.5f"):format(what, a, b)) end
+near(mean(nil, 0.5), lit, 1e-4, "no blocker")
+near(mean(dark, 0.5), 0, 1e-6, "opaque blocker: shadow")
+near(mean(M.mask{material = dark, alpha = 0}, 0.5), lit, 1e-4, "alpha 0: no shadow")
+near(mean(M.mask{material = dark, alpha = 1}, 0.5), 0, 1e-6, "alpha 1: shadow")
+near(mean(M.mask{material = dark, alpha = 0.4, cutoff = 0.5}, 0.5), lit, 1e-4, "below the cutoff")
+near(mean(dark, 5), 0.1 / math.pi * (50 / 49) ^ 2, 1e-4, "the blocker from above, 49 below the light")
+near(mean(M.mask{material = dark, alpha = 0}, 5), lit, 1e-4, "the floor through the cut-out")
+-- A checker of alpha 0 and 1 in 20 x 20 cells: half the shadow.
+local checker = M.mask{material = dark, alpha = torte.texture.checker{a = 0, b = 1, scale = 20}}
+near(mean(checker, 0.5), 0.5 * lit, 0.05 * lit, "checker shadow")
+-- Stochastic: present with probability alpha.
+near(mean(M.mask{material = dark, alpha = 0.3, stochastic = true}, 0.5), 0.7 * lit, 0.04 * lit, "stochastic shadow")
+-- Other integrators trace through the same scene functions.
+for _, integrator in ipairs{"direct", "bdpt", "vcm"} do
+  near(mean(M.mask{material = dark, alpha = 0}, 0.5, integrator), lit, 0.1 * lit, integrator .. ", alpha 0")
+  near(mean(M.mask{material = dark, alpha = 1}, 0.5, integrator), 0, 0.02 * lit, integrator .. ", alpha 1")
+end
+-- An emitter cannot be cut out (its light would be sampled where it is absent).
+local ok, err
+local s = torte.scene()
+s:add(torte.shape.sphere{material = M.mask{material = dark, alpha = 0.5}, emission = 1})
+ok, err = pcall(torte.render, {scene = s, camera = torte.camera.perspective{eye = {0, 0, -4}}, width = 4, height = 4, spp = 1})
+assert(not ok and err:find("cannot have a cut%-out"), tostring(err))
+ok, err = pcall(M.mask, {material = dark, alpha = 2})
+assert(not ok and err:find("'alpha' must be in %[0, 1%]"), tostring(err))
+print("ok")
+)");
+  const Result r = run_torte(dir, {"--quiet", script}, 120);
+  check_no_crash(r);
+  INFO("stderr: " << r.err);
+  CHECK(r.code == 0);
+  CHECK(r.out == "ok\n");
+}
