@@ -8,6 +8,7 @@
 #include "obj_import.h"
 #include "origin.h"
 #include "runtime.h"
+#include "texture_param.h"
 #include "types.h"
 
 namespace torte::lua {
@@ -128,7 +129,10 @@ ShapeDesc common_shape(KwArgs& kw) {
   s.origin = made_at(kw.state(), kw.function());
   s.transform = kw.transform("transform");
   s.material = kw.object<MaterialDesc>("material", true);
-  s.emission = kw.rgb("emission", Rgb(0));
+  // A colour, or a colour texture: the emitted radiance at each point (scale it with the texture operators).
+  const ColorInput emission = color_input(kw, "emission", Rgb(0));
+  s.emission = emission.texture ? Rgb(1) : emission.value;
+  s.emission_texture = emission.texture;
   s.two_sided = kw.boolean("two_sided", false);
   const float det = s.transform.determinant3();
   if (!(std::fabs(det) >= 1e-20f) || !std::isfinite(det)) kw.fail("transform", "is singular or not finite");

@@ -83,6 +83,7 @@ struct Importer {
   tinygltf::Model model;
   std::vector<std::shared_ptr<MaterialDesc>> materials;
   std::vector<Rgb> emission;  // per material
+  std::vector<TexturePtr> emission_texture;  // per material: the emissive texture (times `emission`), or null
   std::vector<std::vector<std::shared_ptr<const TriangleMesh>>> meshes;  // per mesh, per primitive (null: skipped)
   std::vector<std::vector<int>> mesh_material;
   std::shared_ptr<SceneBuilder> group = std::make_shared<SceneBuilder>();
@@ -254,6 +255,8 @@ struct Importer {
         e = e * float(it->second.Get("emissiveStrength").GetNumberAsDouble());
       if (!e.is_finite() || e.r < 0 || e.g < 0 || e.b < 0 || e.max_component() > kMaxEmission)
         fail("material " + quote_text(m.name) + ": emissive factor must be finite, non-negative and at most 1e20");
+      // The emissive texture (sRGB colour) times the factor: the area light's radiance at each point.
+      emission_texture.push_back(e.is_black() ? nullptr : texture(m.emissiveTexture.index, true));
       emission.push_back(e);
     }
   }
@@ -354,7 +357,11 @@ struct Importer {
         s.transform = world;
         s.origin = std::string(kFn) + " node " + std::to_string(index);
         const int mat = mesh_material[size_t(n.mesh)][pi];
-        if (mat >= 0) s.material = materials[size_t(mat)], s.emission = emission[size_t(mat)];
+        if (mat >= 0) {
+          s.material = materials[size_t(mat)];
+          s.emission = emission[size_t(mat)];
+          s.emission_texture = emission_texture[size_t(mat)];
+        }
         s.two_sided = mat >= 0 && model.materials[size_t(mat)].doubleSided;
         if (s.emission.is_black()) group->add_shape(s);
         else emitters.push_back(s);
@@ -437,7 +444,7 @@ struct Importer {
 
 int l_gltf_load(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) throw Error(std::string(kFn) + " expects a file name, got " + type_name(L, 1));
-  Importer im{L, resolve_script_path(L, lua_tostring(L, 1)), "", {}, {}, {}, {}, {}, std::make_shared<SceneBuilder>(), {}, {}, {}};
+  Importer im{L, resolve_script_path(L, lua_tostring(L, 1)), "", {}, {}, {}, {}, {}, {}, std::make_shared<SceneBuilder>(), {}, {}, {}};
   im.dir = std::filesystem::path(im.path).parent_path().string();
   check_read(L, im.path, kFn);
   im.load();

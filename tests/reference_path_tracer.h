@@ -180,7 +180,7 @@ class PathTracer {
     const SceneObject& object = scene.objects[s.object];
     if (object.area_light >= 0) {
       const Light& light = scene.lights[size_t(object.area_light)];
-      const Rgb le = area_emission(light, s, ray_in.d);
+      const Rgb le = area_emission(scene, light, s, ray_in.d);
       if (!le.is_black())
         L += le * emission_weight(object.area_light, light_pdf(scene, light, ray_in.o, ray_in.d, &s, hit.t));
     }

@@ -855,14 +855,14 @@ function torte.clock() end
 ---@class torte.shape.sphere.args
 ---@field transform? torte.transform object to world (default identity)
 ---@field material? torte.material surface material (default matte 0.5)
----@field emission? number|number[] emitted radiance (an area light when not black) (default 0)
+---@field emission? number|number[]|torte.texture emitted radiance (an area light when not black) (default 0)
 ---@field two_sided? boolean emit on both sides (default false)
 ---@field radius? number radius (default 1)
 
 ---@class torte.shape.disk.args
 ---@field transform? torte.transform object to world (default identity)
 ---@field material? torte.material surface material (default matte 0.5)
----@field emission? number|number[] emitted radiance (default 0)
+---@field emission? number|number[]|torte.texture emitted radiance (default 0)
 ---@field two_sided? boolean emit on both sides (default false)
 ---@field radius? number outer radius (default 1)
 ---@field inner_radius? number inner radius (default 0)
@@ -870,7 +870,7 @@ function torte.clock() end
 ---@class torte.shape.cylinder.args
 ---@field transform? torte.transform object to world (default identity)
 ---@field material? torte.material surface material (default matte 0.5)
----@field emission? number|number[] emitted radiance (default 0)
+---@field emission? number|number[]|torte.texture emitted radiance (default 0)
 ---@field two_sided? boolean emit on both sides (default false)
 ---@field radius? number radius (default 1)
 ---@field z_min? number lower end (default -1)
@@ -879,7 +879,7 @@ function torte.clock() end
 ---@class torte.shape.cube.args
 ---@field transform? torte.transform object to world (default identity)
 ---@field material? torte.material surface material (default matte 0.5)
----@field emission? number|number[] emitted radiance (default 0)
+---@field emission? number|number[]|torte.texture emitted radiance (default 0)
 ---@field two_sided? boolean emit on both sides (default false)
 ---@field min? number[] lowest corner (default {-1, -1, -1})
 ---@field max? number[] highest corner (default {1, 1, 1})
@@ -887,14 +887,14 @@ function torte.clock() end
 ---@class torte.shape.polygon.args
 ---@field transform? torte.transform object to world (default identity)
 ---@field material? torte.material surface material (default matte 0.5)
----@field emission? number|number[] emitted radiance (default 0)
+---@field emission? number|number[]|torte.texture emitted radiance (default 0)
 ---@field two_sided? boolean emit on both sides (default false)
 ---@field points any the corners, in order
 
 ---@class torte.shape.mesh.args
 ---@field transform? torte.transform object to world (default identity)
 ---@field material? torte.material surface material (default matte 0.5 (OBJ: its MTL materials))
----@field emission? number|number[] emitted radiance (default 0)
+---@field emission? number|number[]|torte.texture emitted radiance (default 0)
 ---@field two_sided? boolean emit on both sides (default false)
 ---@field mesh? torte.mesh a loaded or generated `torte.mesh` (default none)
 ---@field file? string path, relative to the script's directory (default none)

@@ -1,5 +1,7 @@
 #include "light/light.h"
 
+#include "texture/texture.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -61,8 +63,14 @@ const SurfaceEmission* patch_emission(const EmitterView& scene, const SurfaceHit
   return e.light >= 0 ? &e : nullptr;
 }
 
-Rgb area_emission(const Light& light, const SurfaceHit& hit, Vec3f w) {
-  if (light.two_sided || dot(hit.ng, w) < 0) return light.radiance;
+Rgb area_radiance(const EmitterView& scene, const Light& light, Vec3f p, Vec3f n, Vec2f uv) {
+  // A constant texture is folded into the parameter's value (1 for an untextured light).
+  if (light.emission_texture.texture < 0 || !scene.textures) return light.radiance * light.emission_texture.value;
+  return light.radiance * scene.textures->eval(light.emission_texture, TextureContext{p, n, uv, {}, {}, 0});
+}
+
+Rgb area_emission(const EmitterView& scene, const Light& light, const SurfaceHit& hit, Vec3f w) {
+  if (light.two_sided || dot(hit.ng, w) < 0) return area_radiance(scene, light, hit.p, hit.ns, hit.uv);
   return {};
 }
 
@@ -80,6 +88,7 @@ Vec3f sample_spot_emission(const Light& light, Vec2f u, float* pdf) {
 }
 
 void prepare_sphere_light(const Quadric& q, Light* light) {
+  if (light->emission_texture.texture >= 0) return;  // textured: sampled by area, where the point's uv is known
   light->sphere_cone = false;
   if (light->kind != LightKind::Area || q.kind != QuadricKind::Sphere) return;
   float scale;
@@ -99,7 +108,7 @@ Rgb escaped_radiance(const Light& light, Vec3f dir) {
 }
 
 void sample_area_light_point(const EmitterView& scene, const Light& light, Vec2f u, Vec3f* q, Vec3f* n,
-                             float* pdf_area) {
+                             float* pdf_area, Vec2f* uv) {
   if (light.object < scene.meshes.size()) {
     const TriangleMesh& mesh = scene.meshes[light.object];
     float u_rest;
@@ -114,10 +123,12 @@ void sample_area_light_point(const EmitterView& scene, const Light& light, Vec2f
       if (length_squared(ns) > 0) *n = face_forward(*n, ns);
     }
     *pdf_area = 1 / light.area;  // triangle chosen by area, point uniform on it
+    if (uv) *uv = mesh.has_uvs() ? mesh.uv(idx[0]) * b.x + mesh.uv(idx[1]) * b.y + mesh.uv(idx[2]) * b.z : Vec2f();
   } else {
     const SurfacePoint sp = sample_area(scene.quadrics[light.object - scene.meshes.size()], u, pdf_area);
     *q = sp.p;
     *n = sp.n;
+    if (uv) *uv = sp.uv;
   }
 }
 
@@ -183,8 +194,9 @@ bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u
     case LightKind::Area: {
       if (light.sphere_cone && sample_sphere_cone(light, p, u, s)) return true;
       Vec3f q, n;
+      Vec2f uv;
       float pdf_area;
-      sample_area_light_point(scene, light, u, &q, &n, &pdf_area);
+      sample_area_light_point(scene, light, u, &q, &n, &pdf_area, &uv);
       const Vec3f d = q - p;
       const float dist2 = length_squared(d), dist = std::sqrt(dist2);
       if (!(dist > 0)) return false;
@@ -194,7 +206,7 @@ bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u
       if (!light.two_sided && cos_l <= 0) return false;
       s->pdf = pdf_area * dist2 / std::fabs(cos_l);  // area_to_solid_angle with the distance at hand
       if (!(s->pdf > 0) || !std::isfinite(s->pdf)) return false;
-      s->radiance = light.radiance;
+      s->radiance = area_radiance(scene, light, q, n, uv);
       s->delta = false;
       return true;
     }

@@ -32,10 +32,12 @@
 #include "light/emissive_patches.h"
 #include "light/environment.h"
 #include "light/sky.h"
+#include "texture/texture_param.h"
 
 namespace torte {
 
 struct SurfaceHit;
+class TextureTable;
 
 // Emission of a material override (a voxel face or an object of a voxel cell shape) that belongs to a Patches
 // light: what a ray hitting it sees, and which light samples it.
@@ -54,6 +56,7 @@ struct EmitterView {
   std::span<const SurfaceEmission> override_emission;
   Vec3f center;
   float radius = 0;
+  const TextureTable* textures = nullptr;  // for textured area lights (Light::emission_texture)
 };
 
 enum class LightKind : uint8_t { Point, Area, Infinite, Spot, Distant, Environment, Sky, Patches };
@@ -67,6 +70,8 @@ struct Light {
   float cos_total = 0;          // spot: cosine of the cone's half angle (no light beyond)
   float cos_falloff_start = 1;  // spot: cosine of the half angle where the falloff starts
   uint32_t object = 0;   // area: emitting scene object
+  // area: `radiance` times this texture at the point (a constant, or a node of the scene's TextureTable)
+  ColorParam emission_texture{Rgb(1)};
   bool two_sided = false;  // area: emits on both sides
   float area = 0;        // area: total world area
   Distribution1D triangles;  // area light on a mesh: triangle selection by area
@@ -100,7 +105,11 @@ struct LightSample {
 // A point on an area light chosen uniformly by area (a triangle by area, then a uniform point; or the quadric's
 // area sampling): position, the emitting side's normal (the winding's, turned to the interpolated normal's side
 // when the mesh has normals: the side area_emission lets emit) and the density per unit area.
-void sample_area_light_point(const EmitterView& scene, const Light& light, Vec2f u, Vec3f* q, Vec3f* n, float* pdf_area);
+// `uv` (optional): the point's surface parameterisation, for textured emission.
+void sample_area_light_point(const EmitterView& scene, const Light& light, Vec2f u, Vec3f* q, Vec3f* n, float* pdf_area,
+                             Vec2f* uv = nullptr);
+/// The radiance an area light emits at a point of its surface (p, n, uv): its constant times its texture there.
+Rgb area_radiance(const EmitterView& scene, const Light& light, Vec3f p, Vec3f n, Vec2f uv);
 
 // Samples light `l` as seen from point p. Returns false when the sample carries no light.
 bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s);
@@ -108,7 +117,7 @@ bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u
 // `hit` on this area light (for area lights), or escaped (infinite-like lights). 0 for delta lights.
 float light_pdf(const EmitterView& scene, const Light& light, Vec3f p, Vec3f wi, const SurfaceHit* hit, float t);
 // Radiance an area light emits from `hit` towards -w (w is the ray direction).
-Rgb area_emission(const Light& light, const SurfaceHit& hit, Vec3f w);
+Rgb area_emission(const EmitterView& scene, const Light& light, const SurfaceHit& hit, Vec3f w);
 // Emission of a surface that is part of a Patches light (a voxel face or cell shape): the scene's
 // override_emission entry of its material override, or nullptr.
 const SurfaceEmission* patch_emission(const EmitterView& scene, const SurfaceHit& hit);

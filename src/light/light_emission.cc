@@ -102,9 +102,10 @@ bool sample_emission(const EmitterView& scene, const Light& light, Vec2f u_pos, 
     }
     case LightKind::Area: {
       Vec3f q, n;
+      Vec2f uv;
       float pdf_area;
-      sample_area_light_point(scene, light, u_pos, &q, &n, &pdf_area);
-      return emit_diffuse(q, n, pdf_area, light.two_sided, light.radiance, u_dir, uc, s);
+      sample_area_light_point(scene, light, u_pos, &q, &n, &pdf_area, &uv);
+      return emit_diffuse(q, n, pdf_area, light.two_sided, area_radiance(scene, light, q, n, uv), u_dir, uc, s);
     }
   }
   return false;

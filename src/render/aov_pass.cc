@@ -79,7 +79,7 @@ AovSample trace_sample(const Scene& scene, Ray ray, Hit hit, bool was_hit, Vec3f
       out.depth = hit.t * dot(ray.d, forward);
       out.material = material_id(scene.materials, assigned);
       if (const int area = scene.objects[s.object].area_light; area >= 0)
-        out.emitted = area_emission(scene.lights[size_t(area)], s, ray.d);
+        out.emitted = area_emission(scene, scene.lights[size_t(area)], s, ray.d);
     }
     const MaterialRef m = resolve_material(scene, assigned, s, 0.0f, [&rng] { return rng.next_float(); },
                                            rng.next_u32());
@@ -131,7 +131,7 @@ Rgb emitter_edge(const Scene& scene, const Camera& camera, const Filter& filter,
     const SurfaceHit s = scene.surface(Ray{traced_from.o, traced_from.d, hit.t}, hit);
     const int area = scene.objects[s.object].area_light;
     if (area < 0) continue;
-    const Rgb le = area_emission(scene.lights[size_t(area)], s, traced_from.d);
+    const Rgb le = area_emission(scene, scene.lights[size_t(area)], s, traced_from.d);
     sum[0] += fs.weight * le.r, sum[1] += fs.weight * le.g, sum[2] += fs.weight * le.b;
   }
   return wsum != 0 ? Rgb(float(sum[0] / wsum), float(sum[1] / wsum), float(sum[2] / wsum)) : Rgb(0);

@@ -40,7 +40,7 @@ inline void add_surface_emission(const Scene& scene, const TransportRules& rules
   const SceneObject& object = scene.objects[s.object];
   if (object.area_light >= 0) {
     const Light& light = scene.lights[size_t(object.area_light)];
-    const Rgb le = area_emission(light, s, d);
+    const Rgb le = area_emission(scene, light, s, d);
     if (!le.is_black()) {
       const float w = emission_weight(scene, ps, rules, i, object.area_light, light_pdf(scene, light, o, d, &s, t));
       ps.radiance[i] += ps.beta[i] * le * w;

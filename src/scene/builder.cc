@@ -98,6 +98,8 @@ struct SceneBuilder::Flattening {
       for (const ShapeDesc* sh : ordered(c.shapes->shapes_)) {
         if (sh->kind == ShapeDesc::Kind::Voxel) throw Error("voxel cell shapes cannot hold voxel grids");
         const bool emits = !sh->emission.is_black();
+        if (emits && sh->emission_texture)
+          throw Error("voxel cell shape " + std::to_string(c.id) + ": textured emission is not supported inside voxel cells");
         if (emits && sh->kind != ShapeDesc::Kind::Mesh)
           throw Error("voxel cell shape " + std::to_string(c.id) +
                       ": only meshes (polygons, cubes, meshes) can emit inside a voxel cell, not analytic shapes");
@@ -424,6 +426,7 @@ std::shared_ptr<Scene> SceneBuilder::flatten(ProgressCounter* progress) const {
       light.kind = LightKind::Area;
       light.origin = Flattening::shape_name(*s);
       light.radiance = s->emission;
+      if (s->emission_texture) light.emission_texture = f.textures.add(ColorInput{Rgb(1), s->emission_texture});
       light.object = object;
       light.two_sided = s->two_sided;
       obj.area_light = int32_t(scene->lights.size());

@@ -19,6 +19,8 @@ struct ShapeDesc {
   Transform transform;                       // object-to-world
   std::shared_ptr<const MaterialDesc> material;
   Rgb emission;            // diffuse area light radiance; black = not a light
+  // Textured emission: `emission` times this colour texture at the surface point (meshes and quadrics).
+  std::shared_ptr<const TextureDesc> emission_texture;
   bool two_sided = false;  // emit on both sides
   std::string origin;      // where the script made it ("torte.shape.mesh at scene.lua:7"), for messages; may be empty
 };

@@ -90,7 +90,7 @@ class Scene {
   Vec3f center() const { return center_; }
   float radius() const { return radius_; }
   /// What light code reads (light/light.h); implicit, so light functions take a Scene where they take a view.
-  EmitterView emitters() const { return {meshes, quadrics, override_emission, center_, radius_}; }
+  EmitterView emitters() const { return {meshes, quadrics, override_emission, center_, radius_, &textures}; }
   operator EmitterView() const { return emitters(); }
 
   // One ray (tests, light tools). The renderer traces whole batches with the functions below.

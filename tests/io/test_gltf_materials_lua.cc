@@ -194,3 +194,30 @@ TEST_CASE("gltf materials: alphaMode MASK cuts out below alphaCutoff, BLEND is p
   CHECK(mask_low == Approx(opaque).epsilon(0.02));
   CHECK(blend == Approx(0.2 * opaque + 0.8).epsilon(0.05));
 }
+
+TEST_CASE("gltf materials: the emissive texture times the factor is the area light's radiance", "[gltf]") {
+  TempDir dir("gltf_mat", "emissive");
+  Gltf q = make(5123, "");
+  const std::string image = add_buffer_image(q, solid_png(0, 255, 0));
+  q = textured(q, R"("pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0,
+                "roughnessFactor": 1}, "emissiveFactor": [2, 2, 2], "emissiveTexture": {"index": 0})", image, 1);
+  dir.write("emissive.glb", glb(q));
+  const std::string script = dir.write("emissive.lua", R"(
+local g = torte.gltf.load('emissive.glb')
+local scene = torte.scene()
+for _, e in ipairs(g.emitters) do scene:add(e) end
+local img = torte.render{scene = scene, camera = g.cameras[1], width = 16, height = 16, spp = 4}
+local r, gr, b = img:pixel(8, 8)
+print(("%d %.4f %.4f %.4f"):format(#g.emitters, r, gr, b))
+)");
+  const Result r = run(dir, {"--quiet", script});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  int emitters = 0;
+  double c[3] = {0, 0, 0};
+  std::sscanf(r.out.c_str(), "%d %lf %lf %lf", &emitters, &c[0], &c[1], &c[2]);
+  CHECK(emitters == 1);
+  CHECK(c[0] == Approx(0).margin(1e-4));
+  CHECK(c[1] == Approx(2).epsilon(1e-3));  // the green texel times the factor 2
+  CHECK(c[2] == Approx(0).margin(1e-4));
+}

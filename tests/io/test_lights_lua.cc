@@ -123,3 +123,49 @@ TEST_CASE("lights lua: scenes/lights.lua renders every light type and a thin len
   CHECK(bad.code == 1);
   CHECK_THAT(bad.err, Catch::Contains("argument 'light' must be"));
 }
+
+// Textured area lights: `emission = texture` is the radiance at each point, for rays that hit the emitter and for
+// light samples (next-event estimation, light subpaths) alike, so path and bdpt agree.
+TEST_CASE("lights lua: a textured emitter emits its texture, seen and sampled", "[lights_lua]") {
+  LightDir dir("textured_emission");
+  const std::string script = dir.write("textured.lua", R"(
+local torte = require "torte"
+local T = torte.texture
+local function quad(y, half, material, emission, down)
+  local p = {{-half, y, -half}, {half, y, -half}, {half, y, half}, {-half, y, half}}
+  return torte.shape.mesh{positions = p, indices = down and {0, 1, 2, 0, 2, 3} or {0, 2, 1, 0, 3, 2},
+                          uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, material = material, emission = emission}
+end
+local function floor_mean(emission, integrator, spp)
+  local scene = torte.scene()
+  scene:add(quad(0, 3, torte.material.matte{color = 0.5}))
+  scene:add(quad(1, 1, torte.material.matte{color = 0}, emission, true))
+  local camera = torte.camera.perspective{eye = {0, 0.5, 0}, look_at = {0, 0, 0}, up = {0, 0, 1}, fov = 20}
+  local img = torte.render{scene = scene, camera = camera, width = 16, height = 16, spp = spp or 64, max_depth = 1,
+                           integrator = integrator or "path"}
+  return (img:mean())
+end
+local uniform = floor_mean(1)
+assert(uniform > 0.01, "uniform " .. uniform)
+-- A constant texture is its value as a colour.
+local c = floor_mean(T.constant{value = 3})
+assert(math.abs(c / uniform - 3) < 0.05, "constant texture: " .. c / uniform)
+-- A checker of 0 and 2 in 16 x 16 cells averages 1 over the emitter: nearly the uniform floor.
+local checker = floor_mean(T.checker{a = 0, b = 2, scale = 16})
+assert(math.abs(checker / uniform - 1) < 0.05, "checker: " .. checker / uniform)
+-- Light subpaths (bdpt) start on the texture too: the same image as path's.
+local bdpt = floor_mean(T.checker{a = 0, b = 2, scale = 16}, "bdpt", 256)
+assert(math.abs(bdpt / checker - 1) < 0.05, "bdpt against path: " .. bdpt / checker)
+-- Seen directly from below: the texture's value.
+local scene = torte.scene():add(quad(1, 1, torte.material.matte{color = 0}, T.constant{value = 3}, true))
+local up = torte.camera.perspective{eye = {0, 0.5, 0}, look_at = {0, 1, 0}, up = {0, 0, 1}, fov = 20}
+local seen = (torte.render{scene = scene, camera = up, width = 8, height = 8, spp = 1}:mean())
+assert(math.abs(seen - 3) < 1e-4, "seen: " .. seen)
+print(("ok %.4f %.4f %.4f %.4f"):format(uniform, c, checker, bdpt))
+)");
+  const Result r = run_torte(dir, {"--quiet", script}, 120);
+  check_no_crash(r);
+  INFO("stderr: " << r.err);
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Catch::StartsWith("ok"));
+}
