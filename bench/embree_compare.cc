@@ -13,6 +13,9 @@
 // reference (coherent wins for camera rays, incoherent for the shadow rays, whose origins spread); a '#' line
 // gives both. --embree-context coherent|incoherent pins one. Single rays use the default (INCOHERENT) context.
 //   build           bounds + SAH build + collapse + leaves  vs rtcCommitScene at RTC_BUILD_QUALITY_MEDIUM
+// --mesh FILE.ply|.obj (repeatable; --grow N subdivides it N times like bunny-1m/4m/16m): the same workloads,
+// checks and lines on a user's mesh, loaded with torte's readers and framed in the box as the named scenes are
+// (workloads.h); the named scenes then run only if --scenes is given too.
 // --tree embree: torte's kernels trace Embree's tree instead of torte's (rtcBuildBVH with the settings of Embree's
 // triangle builder, copied into torte's layout; embree_tree.h), so a traversal ratio then compares kernels on one
 // tree. The build line still compares the two builders.
@@ -34,8 +37,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cctype>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
@@ -67,6 +73,9 @@ struct Options {
   bool embree_robust = false;           // --embree-robust: RTC_SCENE_FLAG_ROBUST (torte's guarantees)
   bool embree_tree = false;             // --tree embree: torte's kernels on Embree's tree
   bool embree_t_only = false;           // --embree-hits t: Embree's closest hits keep only t (see embree_hit)
+  std::vector<std::string> meshes;      // --mesh FILE (repeatable): users' meshes, instead of the named scenes
+  int grow = 0;                         // --grow N: subdivide each --mesh N times
+  bool scenes_given = false;            // --scenes with --mesh: the named scenes run too, first
 };
 Options g_opt;
 
@@ -391,8 +400,9 @@ void run_scene(RTCDevice dev, const BenchScene& s) {
 
 int usage() {
   std::fprintf(stderr,
-               "usage: embree-compare [--threads T] [--reps R] [--stat median|min] [--workloads a,b,...] [--full] "
-               "[--scenes a,b,...] [--packet 8|16] "
+               "usage: embree-compare [--help] [--threads T] [--reps R] [--stat median|min] [--workloads a,b,...] "
+               "[--full] "
+               "[--scenes a,b,...] [--mesh FILE.ply|.obj ...] [--grow N] [--packet 8|16] "
                "[--width 4|8] [--embree-context best|coherent|incoherent] [--embree-robust] [--embree-hits full|t] "
                "[--tree torte|embree]\n"
                "  --threads T  traversal and build threads (default 1)\n"
@@ -401,6 +411,9 @@ int usage() {
                "  --workloads  subset of primary,primary-single,shadow,shadow-single,diffuse (builds always run)\n"
                "  --full       add the 4 M and 16 M triangle bunnies (or TORTE_BENCH_FULL=1)\n"
                "  --scenes     subset of bunny,dragon,bunny-1m,bunny-4m,bunny-16m (or TORTE_BENCH_SCENES)\n"
+               "  --mesh FILE  run on this .ply or .obj mesh instead (repeatable; torte's readers), framed in the\n"
+               "               closed box like the named scenes; with --scenes the named ones run too, first\n"
+               "  --grow N     subdivide each --mesh N times (x4 triangles each, as bunny-1m is the bunny grown 2)\n"
                "  --packet     torte's packet size against rtcIntersect16 / rtcOccluded16 (default 16)\n"
                "  --width      torte's BVH width (default %d)\n"
                "  --embree-context  Embree's packets: the faster of the COHERENT and INCOHERENT intersect\n"
@@ -422,7 +435,10 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-    if (a == "--full") {
+    if (a == "--help" || a == "-h") {
+      usage();
+      return 0;
+    } else if (a == "--full") {
       set_full_run(true);
     } else if (a == "--embree-robust") {
       g_opt.embree_robust = true;
@@ -444,10 +460,20 @@ int main(int argc, char** argv) {
       const char* v = value();
       if (!v || (std::string(v) != "torte" && std::string(v) != "embree")) return usage();
       g_opt.embree_tree = std::string(v) == "embree";
+    } else if (a == "--mesh") {
+      const char* v = value();
+      if (!v) return usage();
+      g_opt.meshes.push_back(v);
+    } else if (a == "--grow") {
+      const char* v = value();
+      char* end = nullptr;
+      const long n = v ? std::strtol(v, &end, 10) : -1;
+      if (!v || *end || n < 0 || n > 8) return usage();
+      g_opt.grow = int(n);
     } else if (a == "--threads" || a == "--reps" || a == "--packet" || a == "--width" || a == "--scenes") {
       const char* v = value();
       if (!v) return usage();
-      if (a == "--scenes") setenv("TORTE_BENCH_SCENES", v, 1);
+      if (a == "--scenes") setenv("TORTE_BENCH_SCENES", v, 1), g_opt.scenes_given = true;
       else (a == "--threads" ? g_opt.threads : a == "--reps" ? g_opt.reps : a == "--packet" ? g_opt.packet
                                                                                           : g_opt.width) = std::atoi(v);
     } else {
@@ -459,8 +485,26 @@ int main(int argc, char** argv) {
       (g_opt.embree_context != "best" && g_opt.embree_context != "coherent" && g_opt.embree_context != "incoherent"))
     return usage();
 
+  // A user's mesh must be there before anything runs: a one-line error otherwise (its content is checked as it
+  // loads, also a one-line error).
+  for (const std::string& path : g_opt.meshes) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path, std::ios::binary)) {
+      std::fprintf(stderr, "embree-compare: cannot read mesh %s: %s\n", path.c_str(),
+                   std::filesystem::exists(path, ec) ? "not a readable file" : "no such file");
+      return 1;
+    }
+    if (ext != ".ply" && ext != ".obj") {
+      std::fprintf(stderr, "embree-compare: mesh %s: expected a .ply or .obj file\n", path.c_str());
+      return 1;
+    }
+  }
+  if (g_opt.grow > 0 && g_opt.meshes.empty()) return usage();
+  const bool named_scenes = g_opt.meshes.empty() || g_opt.scenes_given;
   std::string why;
-  if (!shared_data_available(&why)) {
+  if (named_scenes && !shared_data_available(&why)) {
     std::printf("embree-compare: SKIPPED, no benchmark meshes: %s\n", why.c_str());
     return 0;
   }
@@ -484,12 +528,14 @@ int main(int argc, char** argv) {
               g_opt.threads == 1 ? "traversal in thread CPU time, builds in process CPU time" : "wall time");
   std::fflush(stdout);
   try {
-    for (const std::string& name : scene_names()) {
-      const BenchScene& s = get_scene(name);
+    auto run = [&](const BenchScene& s) {
       if (g_opt.width == 4) run_scene<4>(dev, s);
       else run_scene<8>(dev, s);
       release_scene();
-    }
+    };
+    if (named_scenes)
+      for (const std::string& name : scene_names()) run(get_scene(name));
+    for (const std::string& path : g_opt.meshes) run(get_mesh_scene(path, g_opt.grow));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "embree-compare: %s\n", e.what());
     rtcReleaseDevice(dev);

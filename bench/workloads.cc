@@ -97,20 +97,17 @@ void compute_reference(const BenchScene& s, Workload& w, std::vector<Hit>* hits 
   }
 }
 
-std::unique_ptr<BenchScene> make_scene(const std::string& name) {
-  const SceneRecipe* recipe = nullptr;
-  for (const SceneRecipe& r : kRecipes)
-    if (name == r.name) recipe = &r;
-  if (!recipe) throw Error("bench: unknown scene '" + name + "'");
-
+// The scene `name`: the mesh in `path` (torte's PLY / OBJ readers), subdivided `levels` times, framed and boxed.
+std::unique_ptr<BenchScene> make_scene(const std::string& name, const std::string& path, int levels) {
   auto s = std::make_unique<BenchScene>();
   s->name = name;
   auto t0 = std::chrono::steady_clock::now();
   {
-    TriangleMesh base = load_mesh(shared_data_dir() + "/" + recipe->file);
+    TriangleMesh base = load_mesh(path);
+    if (base.triangle_count() == 0) throw Error("bench: " + path + " has no triangles");
     // Positions and indices only: the kernels (and Embree) need nothing else.
     base.nx.clear(), base.ny.clear(), base.nz.clear(), base.u.clear(), base.v.clear();
-    s->mesh = recipe->levels > 0 ? subdivide(base, recipe->levels, kDisplacement, kSubdivSeed) : std::move(base);
+    s->mesh = levels > 0 ? subdivide(base, levels, kDisplacement, kSubdivSeed) : std::move(base);
     s->mesh.nx.clear(), s->mesh.ny.clear(), s->mesh.nz.clear(), s->mesh.u.clear(), s->mesh.v.clear();
   }
   s->model_triangles = s->mesh.triangle_count();
@@ -153,8 +150,12 @@ std::unique_ptr<BenchScene> make_scene(const std::string& name) {
   const Vec3f eye = c + right * a + up * b - forward * dist;
 
   // The room: the model stands on the floor; walls 3.5 r from the centre, ceiling 5 r above the floor.
-  const Vec3f box_lo(c.x - 3.5f * r, mb.lo.y - 1e-3f * r, c.z - 3.5f * r);
-  const Vec3f box_hi(c.x + 3.5f * r, mb.lo.y + 5.0f * r, c.z + 3.5f * r);
+  // A user's mesh of unusual proportions (--mesh) can put the eye beyond a wall: the box then grows to hold it
+  // (never the case for the named scenes, whose box is as above).
+  Vec3f box_lo(c.x - 3.5f * r, mb.lo.y - 1e-3f * r, c.z - 3.5f * r);
+  Vec3f box_hi(c.x + 3.5f * r, mb.lo.y + 5.0f * r, c.z + 3.5f * r);
+  const Vec3f margin(0.1f * r, 0.1f * r, 0.1f * r);
+  box_lo = min(box_lo, eye - margin), box_hi = max(box_hi, eye + margin);
   add_box(s->mesh, box_lo, box_hi);
   s->mesh.validate("bench scene " + name);
   // Square area light (side 1.5 r) centred over the model, just below the ceiling, facing down.
@@ -206,6 +207,21 @@ std::unique_ptr<BenchScene> make_scene(const std::string& name) {
 }
 
 std::unique_ptr<BenchScene> g_scene;
+std::string g_scene_key;  // what g_scene was made from: "name:<name>" or "mesh:<grow>:<path>"
+
+const BenchScene& cached_scene(const std::string& key, const std::string& name, const std::string& path,
+                               int levels) {
+  if (!g_scene || g_scene_key != key) {
+    g_scene.reset();  // free the previous scene first
+    g_scene_key.clear();
+    g_scene = make_scene(name, path, levels);
+    g_scene_key = key;
+    std::fprintf(stderr, "# scene %s: %zu triangles (model %zu + 12 box), load %.2f s, rays+reference %.2f s\n",
+                 name.c_str(), g_scene->triangles(), g_scene->model_triangles, g_scene->load_seconds,
+                 g_scene->setup_seconds);
+  }
+  return *g_scene;
+}
 
 }  // namespace
 
@@ -350,16 +366,23 @@ bool BenchScene::reference_any(const Ray& ray) const {
 }
 
 const BenchScene& get_scene(const std::string& name) {
-  if (!g_scene || g_scene->name != name) {
-    g_scene.reset();  // free the previous scene first
-    g_scene = make_scene(name);
-    std::fprintf(stderr, "# scene %s: %zu triangles (model %zu + 12 box), load %.2f s, rays+reference %.2f s\n",
-                 name.c_str(), g_scene->triangles(), g_scene->model_triangles, g_scene->load_seconds,
-                 g_scene->setup_seconds);
-  }
-  return *g_scene;
+  const SceneRecipe* recipe = nullptr;
+  for (const SceneRecipe& r : kRecipes)
+    if (name == r.name) recipe = &r;
+  if (!recipe) throw Error("bench: unknown scene '" + name + "'");
+  return cached_scene("name:" + name, name, shared_data_dir() + "/" + recipe->file, recipe->levels);
 }
 
-void release_scene() { g_scene.reset(); }
+const BenchScene& get_mesh_scene(const std::string& path, int grow) {
+  if (grow < 0) throw Error("bench: --grow must be >= 0");
+  std::string name = std::filesystem::path(path).filename().string();
+  if (grow > 0) name += "-grow" + std::to_string(grow);
+  return cached_scene("mesh:" + std::to_string(grow) + ":" + path, name, path, grow);
+}
+
+void release_scene() {
+  g_scene.reset();
+  g_scene_key.clear();
+}
 
 }  // namespace torte::bench

@@ -124,6 +124,11 @@ struct BenchScene {
 // truth. Only the most recently requested scene stays cached, so that the 16 M-triangle scenes fit in memory.
 // Throws torte::Error for an unknown name or an unreadable mesh.
 const BenchScene& get_scene(const std::string& name);
+// The same for a user's mesh: the .ply or .obj file at `path` (torte's readers, load_mesh), subdivided `grow`
+// times as the bunny-Nm scenes are (1-to-4, the same displacement and seed), in the same box with the same
+// framing, camera and light. The scene is named after the file ("lucy_100k.obj", "lucy_100k.obj-grow2").
+// Shares the one-scene cache with get_scene. Throws torte::Error for an unreadable or bad file.
+const BenchScene& get_mesh_scene(const std::string& path, int grow = 0);
 void release_scene();
 
 }  // namespace torte::bench

@@ -9,6 +9,9 @@
 //   shadow:  one ray per camera hit towards a point sampled on one of the scene's lights (chosen by hash).
 // Google Benchmark is what bench/ uses for fixed workloads; it cannot be driven from a script on the script's
 // own scene, so the repetitions and their statistics are timed here.
+//
+// kernel = "embree" (builds with Embree 3, TORTE_HAVE_EMBREE; see embree_* below): the same rays through Embree,
+// on an Embree scene of the torte scene's world-space triangles, validated against the same reference.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -16,9 +19,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
+
+#ifdef TORTE_HAVE_EMBREE
+#include <embree3/rtcore.h>
+#endif
 
 #include "binding.h"
 #include "camera/camera.h"
@@ -94,24 +104,214 @@ RayArrays secondary_rays(const Scene& scene, const RayArrays& primary, const std
   return rays;
 }
 
-// Traces all rays with `kernel` on `threads` threads, in chunks aligned to 16 rays.
-void trace(const Scene& scene, const RayArrays& rays, RayKind kind, TraceKernel kernel, int threads,
-           std::vector<Hit>* hits, std::vector<uint8_t>* blocked) {
-  const size_t n = rays.size(), chunk = 4096;
-  auto body = [&](size_t first) {
-    const size_t count = std::min(chunk, n - first);
-    if (kind == RayKind::kShadow) scene.accel().occluded(rays.soa(first), count, blocked->data() + first, kernel);
-    else scene.accel().intersect(rays.soa(first), count, hits->data() + first, kernel);
-  };
+// Runs body(first, count) over rays [0, n) in chunks of 4096 (aligned to 16 rays) on `threads` threads.
+void for_chunks(size_t n, int threads, const std::function<void(size_t, size_t)>& body) {
+  constexpr size_t chunk = 4096;
   if (threads == 1) {
-    for (size_t first = 0; first < n; first += chunk) body(first);
+    for (size_t first = 0; first < n; first += chunk) body(first, std::min(chunk, n - first));
     return;
   }
   tbb::task_arena arena(threads);
   arena.execute([&] {
-    tbb::parallel_for(size_t(0), (n + chunk - 1) / chunk, [&](size_t c) { body(c * chunk); });
+    tbb::parallel_for(size_t(0), (n + chunk - 1) / chunk,
+                      [&](size_t c) { body(c * chunk, std::min(chunk, n - c * chunk)); });
   });
 }
+
+// Traces all rays with `kernel` on `threads` threads.
+void trace(const Scene& scene, const RayArrays& rays, RayKind kind, TraceKernel kernel, int threads,
+           std::vector<Hit>* hits, std::vector<uint8_t>* blocked) {
+  for_chunks(rays.size(), threads, [&](size_t first, size_t count) {
+    if (kind == RayKind::kShadow) scene.accel().occluded(rays.soa(first), count, blocked->data() + first, kernel);
+    else scene.accel().intersect(rays.soa(first), count, hits->data() + first, kernel);
+  });
+}
+
+// ---- kernel = "embree" -----------------------------------------------------------------------------------------
+//
+// The Embree scene: one RTC_GEOMETRY_TYPE_TRIANGLE geometry holding the root geometry set's triangles in world
+// space, in torte's own (leaf-order) numbering, so Embree's primID is torte's Hit::prim. The scene's meshes have
+// released their positions once built (scene/scene.h), so each triangle's vertices are read back through the
+// set's surface() at barycentrics (0,0), (1,0), (0,1), which reproduces the leaf vertices exactly; the result is a
+// triangle soup (36 + 12 bytes per triangle, shared with Embree) built at RTC_BUILD_QUALITY_MEDIUM in Embree's
+// default (non-robust) mode, as embree-compare builds its scenes.
+//
+// Built once per torte scene and kept for the next calls on it: one Embree scene for the whole process, keyed by
+// the torte scene it was made from (a weak pointer, and the builder's fingerprint, which lets it be freed before
+// a changed scene is flattened). The cost, on the first embree call for a scene only: the read-back and Embree's
+// build (all cores), about 0.7 s per million triangles here (the bunny grown to 1.1 M: 0.76 s on 2 loaded cores),
+// plus the 48 B/tri soup and Embree's BVH while it is kept; it lingers after the torte scene is gone until the
+// next embree call (or the process ends).
+//
+// The Embree call per ray kind is the one bench/embree_compare.cc sets against torte's kernels (its comparable
+// path), with the intersect context its "best" choice picks for those rays:
+//   camera  rtcIntersect16 on each 4x4 block of 16 rays, COHERENT context  (embree-compare "primary")
+//   shadow  rtcOccluded16 on each group of 16, INCOHERENT context          (embree-compare "shadow")
+//   diffuse rtcIntersect1, one ray at a time                                (embree-compare "diffuse")
+#ifdef TORTE_HAVE_EMBREE
+struct EmbreeScene {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::weak_ptr<const Scene> of;     // the torte scene it was built from
+  std::vector<uint64_t> fingerprint;  // and that scene's builder fingerprint
+  std::vector<float> vertices;        // 9 floats per triangle, + 1 of padding (Embree's 16-byte loads)
+  std::vector<uint32_t> indices;      // 0, 1, 2, ...
+  std::string error;                  // the device's last error message
+
+  void release() {
+    if (scene) rtcReleaseScene(scene);
+    scene = nullptr;
+    of.reset();
+    fingerprint.clear();
+    std::vector<float>().swap(vertices);
+    std::vector<uint32_t>().swap(indices);
+  }
+};
+
+std::mutex g_embree_mutex;
+// Never destroyed: Embree's device is released by the process's end, not by a static destructor racing TBB's.
+EmbreeScene& embree_cache() {
+  static EmbreeScene* cache = new EmbreeScene;
+  return *cache;
+}
+
+void embree_check(EmbreeScene& e, const char* what) {
+  const RTCError code = rtcGetDeviceError(e.device);
+  if (code != RTC_ERROR_NONE)
+    throw Error(std::string("torte.bench: Embree ") + what + " failed (error " + std::to_string(int(code)) + ": " +
+                e.error + ")");
+}
+
+// "1 quadric, 2 instances", or "" for a scene of triangle meshes only.
+std::string non_triangle_parts(const Scene& scene) {
+  std::string out;
+  auto add = [&](size_t n, const char* one, const char* many) {
+    if (n == 0) return;
+    out += (out.empty() ? "" : ", ") + std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  add(scene.quadrics.size(), "quadric", "quadrics");
+  add(scene.grids.size(), "voxel grid", "voxel grids");
+  add(scene.instances.size(), "instance", "instances");
+  return out;
+}
+
+// The Embree scene of `scene`, built unless the cache holds it (*reused says which). Call under g_embree_mutex.
+const EmbreeScene& embree_scene(const std::shared_ptr<const Scene>& scene, const std::vector<uint64_t>& fingerprint,
+                                bool* reused) {
+  EmbreeScene& e = embree_cache();
+  *reused = e.scene && e.of.lock() == scene;
+  if (*reused) return e;
+  e.release();
+  if (!e.device) {
+    e.device = rtcNewDevice(nullptr);
+    if (!e.device)
+      throw Error("torte.bench: Embree's rtcNewDevice failed (error " +
+                  std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    auto on_error = [](void* user, RTCError, const char* str) {
+      static_cast<EmbreeScene*>(user)->error = str ? str : "";
+    };
+    rtcSetDeviceErrorFunction(e.device, on_error, &e);
+  }
+  const GeometrySet& root = scene->accel().root();
+  const size_t n = root.triangle_count();
+  e.vertices.assign(9 * n + 1, 0.0f);
+  e.indices.resize(3 * n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t < r.end(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        Hit h;
+        h.t = 1, h.prim = uint32_t(t), h.b1 = k == 1 ? 1.0f : 0.0f, h.b2 = k == 2 ? 1.0f : 0.0f;
+        const Vec3f p = root.surface(h).p;  // p0 * 1 + p1 * 0 + p2 * 0: the vertex itself
+        float* v = &e.vertices[9 * t + 3 * size_t(k)];
+        v[0] = p.x, v[1] = p.y, v[2] = p.z;
+        e.indices[3 * t + size_t(k)] = uint32_t(3 * t + size_t(k));
+      }
+    }
+  });
+  e.error.clear();
+  e.scene = rtcNewScene(e.device);
+  rtcSetSceneBuildQuality(e.scene, RTC_BUILD_QUALITY_MEDIUM);
+  if (n > 0) {
+    RTCGeometry g = rtcNewGeometry(e.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_MEDIUM);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, e.vertices.data(), 0,
+                               3 * sizeof(float), 3 * n);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, e.indices.data(), 0,
+                               3 * sizeof(uint32_t), n);
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(e.scene, g);
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(e.scene);
+  try {
+    embree_check(e, "scene build");
+  } catch (...) {
+    e.release();
+    throw;
+  }
+  e.of = scene;
+  e.fingerprint = fingerprint;
+  return e;
+}
+
+Hit embree_hit(bool hit, float t, uint32_t prim, float u, float v) {
+  return hit ? Hit{t, prim, u, v, kNoHit} : Hit{};
+}
+
+// Rays [first, first + count) through Embree, with the call of the table above for `kind`.
+void embree_trace_chunk(RTCScene scene, const RayArrays& rays, RayKind kind, size_t first, size_t count, Hit* hits,
+                        uint8_t* blocked) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  const size_t end = first + count;
+  if (kind == RayKind::kDiffuse) {
+    for (size_t i = first; i < end; ++i) {
+      RTCRayHit rh;
+      rh.ray.org_x = rays.ox[i], rh.ray.org_y = rays.oy[i], rh.ray.org_z = rays.oz[i], rh.ray.tnear = 0;
+      rh.ray.dir_x = rays.dx[i], rh.ray.dir_y = rays.dy[i], rh.ray.dir_z = rays.dz[i], rh.ray.time = 0;
+      rh.ray.tfar = rays.t_max[i], rh.ray.mask = ~0u, rh.ray.id = uint32_t(i), rh.ray.flags = 0;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene, &ctx, &rh);
+      hits[i] = embree_hit(rh.hit.geomID != RTC_INVALID_GEOMETRY_ID, rh.ray.tfar, rh.hit.primID, rh.hit.u, rh.hit.v);
+    }
+    return;
+  }
+  ctx.flags = kind == RayKind::kCamera ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[16];
+  auto load = [&](RTCRay16& r, size_t i) {  // rays [i, i + 16), those past the end invalid
+    for (int k = 0; k < 16; ++k) {
+      const size_t j = std::min(i + size_t(k), end - 1);
+      valid[k] = i + size_t(k) < end ? -1 : 0;
+      r.org_x[k] = rays.ox[j], r.org_y[k] = rays.oy[j], r.org_z[k] = rays.oz[j], r.tnear[k] = 0;
+      r.dir_x[k] = rays.dx[j], r.dir_y[k] = rays.dy[j], r.dir_z[k] = rays.dz[j], r.time[k] = 0;
+      r.tfar[k] = rays.t_max[j], r.mask[k] = ~0u, r.id[k] = uint32_t(j), r.flags[k] = 0;
+    }
+  };
+  for (size_t i = first; i < end; i += 16) {
+    load(rh.ray, i);
+    const int lanes = int(std::min<size_t>(16, end - i));
+    if (kind == RayKind::kShadow) {
+      rtcOccluded16(valid, scene, &ctx, &rh.ray);
+      for (int k = 0; k < lanes; ++k) blocked[i + size_t(k)] = rh.ray.tfar[k] < 0;  // Embree: tfar = -inf if blocked
+    } else {
+      for (int k = 0; k < 16; ++k)
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect16(valid, scene, &ctx, &rh);
+      for (int k = 0; k < lanes; ++k)
+        hits[i + size_t(k)] = embree_hit(rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID, rh.ray.tfar[k],
+                                         rh.hit.primID[k], rh.hit.u[k], rh.hit.v[k]);
+    }
+  }
+}
+
+void trace_embree(const EmbreeScene& e, const RayArrays& rays, RayKind kind, int threads, std::vector<Hit>* hits,
+                  std::vector<uint8_t>* blocked) {
+  for_chunks(rays.size(), threads, [&](size_t first, size_t count) {
+    embree_trace_chunk(e.scene, rays, kind, first, count, hits->data(), blocked->data());
+  });
+}
+#endif  // TORTE_HAVE_EMBREE
 
 // Restores the SIMD target a script had when torte.bench returns or fails.
 struct TargetGuard {
@@ -141,19 +341,46 @@ int l_bench(lua_State* L) {
   else if (rays_name == "shadow") kind = RayKind::kShadow;
   else if (rays_name != "camera") kw.fail("rays", "must be \"camera\", \"diffuse\" or \"shadow\", got \"" + rays_name + "\"");
   TraceKernel kernel = TraceKernel::kPacket8;
+  const bool embree = kernel_name == "embree";
   if (kernel_name == "single") kernel = TraceKernel::kSingle;
   else if (kernel_name == "packet16") kernel = TraceKernel::kPacket16;
-  else if (kernel_name != "packet8")
-    kw.fail("kernel", "must be \"single\", \"packet8\" or \"packet16\", got \"" + kernel_name + "\"");
+  else if (kernel_name != "packet8" && !embree)
+    kw.fail("kernel", "must be \"single\", \"packet8\" or \"packet16\" (or \"embree\", the same rays through "
+                      "Embree), got \"" + kernel_name + "\"");
+#ifndef TORTE_HAVE_EMBREE
+  if (embree)
+    throw Error("torte.bench: kernel \"embree\" is not available: torte was built without Embree (install "
+                "libembree-dev, scripts/install-deps.sh --bench, and reconfigure)");
+#endif
   if (width < 1 || width > 16384 || height < 1 || height > 16384) kw.fail("width", "and height must be in 1..16384");
   if (reps < 1 || reps > 10000) kw.fail("reps", "must be in 1..10000");
   const int max_threads = int(std::max(1u, std::thread::hardware_concurrency()));
   if (threads < 1 || threads > max_threads) kw.fail("threads", "must be in 1.." + std::to_string(max_threads));
   if (seed < 0) kw.fail("seed", "must be a non-negative integer");
 
+#ifdef TORTE_HAVE_EMBREE
+  std::unique_lock<std::mutex> embree_lock(g_embree_mutex, std::defer_lock);
+  std::vector<uint64_t> fingerprint;
+  if (embree) {
+    embree_lock.lock();
+    fingerprint = builder->fingerprint();
+    // A changed scene: free its Embree scene before the new one is flattened (never two large scenes at once).
+    if (embree_cache().fingerprint != fingerprint) embree_cache().release();
+  }
+#endif
   const SceneCache::Lookup built = cached_scene(L, *builder, "torte.bench");
   const Scene& scene = *built.scene;
   if (kind == RayKind::kShadow && scene.lights.empty()) kw.fail("rays", "\"shadow\" needs a scene with lights");
+  bool embree_reused = true;
+#ifdef TORTE_HAVE_EMBREE
+  const EmbreeScene* embree_scene_built = nullptr;
+  if (embree) {
+    if (const std::string parts = non_triangle_parts(scene); !parts.empty())
+      throw Error("torte.bench: kernel \"embree\" supports scenes of triangle meshes only (this scene has " + parts +
+                  ")");
+    embree_scene_built = &embree_scene(built.scene, fingerprint, &embree_reused);
+  }
+#endif
   const Camera camera(*camera_desc, width, height);
 
   TargetGuard guard;
@@ -177,7 +404,11 @@ int l_bench(lua_State* L) {
   for (int r = 0; r < reps; ++r) {
     if (interrupt_requested()) throw Interrupted("interrupted: torte.bench stopped");
     const auto t0 = std::chrono::steady_clock::now();
-    trace(scene, rays, kind, kernel, threads, &hits, &blocked);
+#ifdef TORTE_HAVE_EMBREE
+    if (embree) trace_embree(*embree_scene_built, rays, kind, threads, &hits, &blocked);
+    else
+#endif
+      trace(scene, rays, kind, kernel, threads, &hits, &blocked);
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
 
@@ -225,7 +456,7 @@ int l_bench(lua_State* L) {
   set_string("rays_kind", rays_name);
   set_string("simd", used_target);
   set_integer("threads", size_t(threads));
-  lua_pushboolean(L, built.reused);
+  lua_pushboolean(L, built.reused && embree_reused);  // kernel = "embree": and its Embree scene
   lua_setfield(L, -2, "scene_reused");
   return 1;
 }

@@ -8,6 +8,8 @@
 --                              [sea_radius=2e7]
 --                              [width=960] [height=540] [spp=16] [max_depth=6] [integrator=path|direct|lt]
 --                              [output=out/minecraft.exr]
+--                              [bench=false] [reps=5] [threads=1] [rays=camera,diffuse,shadow]
+--                              [kernels=single,packet8,packet16] [targets=all] [embree=true]
 --
 -- world: default ../shared/data/minecraft/bluenbt-1.20.1-paper (relative to this script); a bare name such as
 --   world=prismarine-1.16 is looked up in that folder too. Every world there has framing defaults below.
@@ -19,6 +21,8 @@
 -- emission: emitting blocks (torches, lanterns, glowstone, lava, fire, ...) light the scene: their faces and
 --   flames are area lights of the voxel grid, sampled by power (docs/voxels.md). emission=false: unlit look only.
 -- When the world folder is missing the scene renders the empty sky (with a notice unless --quiet).
+-- bench=true (scenes/bench-minecraft.lua): instead of rendering, times the traversal kernels on this world's
+--   voxel grid from the same camera at width x height (torte.bench; the table of scenes/lib/bench-table.lua).
 local torte = require "torte"
 local world = require "minecraft.world"
 local blocks = require "minecraft.blocks"
@@ -30,6 +34,8 @@ local opt = torte.options{
   world = data_dir .. "/bluenbt-1.20.1-paper", box = "", camera = "", fov = 40, sun_elevation = 35,
   sun_azimuth = -50, emission = true, skip_bad_chunks = false, sea = true, sea_radius = 2e7,
   width = 960, height = 540, spp = 16, max_depth = 6, integrator = "path", output = "out/minecraft.exr",
+  bench = false, reps = 5, threads = 1, rays = "camera,diffuse,shadow", kernels = "single,packet8,packet16",
+  targets = "all", embree = true,
 }
 
 local function numbers(s, n, name)
@@ -191,6 +197,11 @@ eye = eye or {0, 80, -60}
 look_at = look_at or {0, 70, 0}
 
 local camera = torte.camera.perspective{eye = eye, look_at = look_at, up = {0, 1, 0}, fov = opt.fov}
+if opt.bench then
+  if not have_world then error("bench=true needs a world (" .. dir .. " has no region files)", 0) end
+  dofile(script_dir .. "/lib/bench-table.lua")(torte, scene, camera, opt, name)
+  return
+end
 local image = torte.render{scene = scene, camera = camera, width = opt.width, height = opt.height, spp = opt.spp,
                            max_depth = opt.max_depth, integrator = opt.integrator}
 torte.save(image, opt.output)

@@ -6,9 +6,12 @@
 #include <lua.h>
 #include <lualib.h>
 
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "runtime.h"
+#include "test_support.h"
 #include "types.h"
 
 namespace torte {
@@ -101,5 +104,105 @@ TEST_CASE("torte.bench: bad keys and impossible requests are errors naming the k
   CHECK(s.run("assert(torte.simd.current() == torte.simd.targets()[1])") == "");
 }
 
+TEST_CASE("torte.bench: kernel = \"embree\" on scenes of triangle meshes, or the error saying it is missing",
+          "[bench_lua]") {
+  BenchState s;
+  // Triangle meshes only: a closed box, a smaller box and a mesh polygon light; an odd image size, so the last
+  // groups of 16 are partial; an off-axis camera, so no pixel centre lies exactly on an edge.
+  REQUIRE(s.run(R"(
+local M = torte.material.matte{color = 0.5}
+tris = torte.scene()
+tris:add(torte.shape.cube{transform = torte.translate(0, 1, 0) * torte.scale(3, 1, 3), material = M})
+tris:add(torte.shape.cube{transform = torte.translate(-0.5, 0.3, 0.1) * torte.rotate(25, {0, 1, 0}) *
+                                      torte.scale(0.3), material = M})
+tris:add(torte.shape.polygon{points = {{-0.3, 1.95, -0.3}, {0.3, 1.95, -0.3}, {0.3, 1.95, 0.3}, {-0.3, 1.95, 0.3}},
+                             emission = 5, material = M})
+cam = torte.camera.perspective{eye = {0.13, 1.07, 2.71}, look_at = {0.05, 0.52, 0.03}, fov = 60}
+ball = torte.scene():add(torte.shape.sphere{radius = 0.4}, torte.shape.cube{transform = torte.translate(0, -2, 0)})
+)") == "");
+#ifdef TORTE_HAVE_EMBREE
+  const std::string check = R"(
+-- Two threads where the machine has them.
+local two = pcall(torte.bench, {scene = tris, camera = cam, kernel = "single", width = 8, height = 8, reps = 1,
+                                threads = 2})
+for _, threads in ipairs(two and {1, 2} or {1}) do
+  for _, rays in ipairs{"camera", "diffuse", "shadow"} do
+    local r = torte.bench{scene = tris, camera = cam, rays = rays, kernel = "embree", width = 37, height = 29,
+                          reps = 2, threads = threads}
+    local what = ("embree %s, %d thread(s): "):format(rays, threads)
+    assert(r.valid and r.mismatches == 0, what .. r.mismatches .. " of " .. r.rays .. " rays disagree")
+    assert(r.kernel == "embree" and r.rays_kind == rays, what .. "labels")
+    assert(r.hits == r.reference_hits, what .. r.hits .. " hits, the reference " .. r.reference_hits)
+    assert(r.mrays > 0 and r.mrays_min <= r.mrays and r.mrays <= r.mrays_max, what .. "rates")
+    if rays == "camera" then assert(r.rays == 37 * 29 and r.hits == r.rays, what .. "every camera ray hits") end
+    if rays == "shadow" then assert(r.hits > 0 and r.hits < r.rays, what .. "occluded " .. r.hits) end
+    -- The same rays as the torte kernels trace: the same number and reference.
+    local t = torte.bench{scene = tris, camera = cam, rays = rays, kernel = "single", width = 37, height = 29, reps = 1}
+    assert(t.rays == r.rays and t.reference_hits == r.reference_hits, what .. "ray set differs from torte's")
+    assert(t.scene_reused, what .. "the torte scene is reused")
+  end
+end
+-- The Embree scene is built once per torte scene.
+local again = torte.bench{scene = tris, camera = cam, kernel = "embree", width = 8, height = 8, reps = 1}
+assert(again.scene_reused and again.valid, "Embree scene reused")
+)";
+  CHECK(s.run(check) == "");
+  // Shapes Embree is not given are refused, naming what the scene has.
+  CHECK_THAT(s.run("torte.bench{scene = ball, camera = cam, kernel = 'embree', width = 8, height = 8, reps = 1}"),
+             Catch::Contains("kernel \"embree\" supports scenes of triangle meshes only (this scene has 1 quadric)"));
+  CHECK_THAT(s.run("local g = torte.group(); g:add(torte.shape.cube{}); "
+                   "local sc = torte.scene():add(torte.instance{group = g}, torte.instance{group = g}); "
+                   "torte.bench{scene = sc, camera = cam, kernel = 'embree', width = 8, height = 8, reps = 1}"),
+             Catch::Contains("(this scene has 2 instances)"));
+  // The scene that was refused did not spoil the next call.
+  CHECK(s.run("assert(torte.bench{scene = tris, camera = cam, kernel = 'embree', width = 8, height = 8, "
+              "reps = 1}.valid)") == "");
+#else
+  CHECK_THAT(s.run("torte.bench{scene = tris, camera = cam, kernel = 'embree', width = 8, height = 8, reps = 1}"),
+             Catch::Contains("kernel \"embree\" is not available: torte was built without Embree"));
+#endif
+}
+
 }  // namespace
 }  // namespace torte
+
+// The shipped benchmark scripts at a tiny size, as users run them and under --sandbox: every row valid. They
+// need ../shared/data (the bunny, a Minecraft world) and say so when it is absent.
+TEST_CASE("torte.bench: scenes/bench-*.lua print a table of valid rows", "[bench_lua][scenes]") {
+  torte::test::TempDir dir("bench_lua", "scenes");
+  const std::string data = std::string(TORTE_SOURCE_DIR) + "/../shared/data";
+  struct Case {
+    const char* scene;
+    std::vector<std::string> args;
+    const char* needs;
+  };
+  const Case cases[] = {
+      {"scenes/bench-traversal.lua", {"width=24", "height=16", "reps=1"}, "/meshes/bunny/bun_zipper.ply"},
+      {"scenes/bench-minecraft.lua", {"width=24", "height=16", "reps=1", "box=0,60,0,16,80,16"},
+       "/minecraft/bluenbt-1.20.1-paper"},
+  };
+  for (const Case& c : cases) {
+    if (!std::filesystem::exists(data + c.needs)) {
+      WARN(c.scene << ": skipped, " << data + c.needs << " is missing");
+      continue;
+    }
+    for (bool sandbox : {false, true}) {
+      INFO(c.scene << (sandbox ? " under --sandbox" : ""));
+      std::vector<std::string> args{"--quiet"};
+      if (sandbox) args.insert(args.end(), {"--sandbox", "--allow-read", "../shared/data"});
+      args.push_back(c.scene);
+      args.insert(args.end(), c.args.begin(), c.args.end());
+      const torte::test::Result r = torte::test::run_torte(dir, args, 300, TORTE_SOURCE_DIR);
+      INFO("stdout: " << r.out << "\nstderr: " << r.err);
+      REQUIRE(r.code == 0);
+      int rows = 0;
+      for (const std::string& line : torte::test::lines_of(r.out)) {
+        if (!(line.starts_with("camera") || line.starts_with("diffuse") || line.starts_with("shadow"))) continue;
+        ++rows;
+        CHECK(line.ends_with("yes"));
+      }
+      CHECK(rows == 9);  // 3 ray kinds x 3 kernels
+      CHECK_THAT(r.out, Catch::Contains("best/scalar"));
+    }
+  }
+}

@@ -86,7 +86,7 @@ TEST_CASE("voxel lua: bad arguments are one-line errors naming file and line", "
       {"local g = torte.voxel.grid{}\ng:define{id = 0}\n", "0 is the empty voxel"},
       {"local g = torte.voxel.grid{}\ng:define{id = -2, material = 1}\n", "'shape'"},
       {"local g = torte.voxel.grid{}\nlocal s = torte.shape.voxels{grid = g, transfrom = 1}\n", "unknown key 'transfrom'"},
-      {"-- x\nlocal g = torte.voxel.grid{size = 3}\n", "torte.voxel.grid: unknown key 'size'"},
+      {"-- x\nlocal g = torte.voxel.grid{size = 3}\n", "torte.voxel.grid takes no keys (got 'size')"},
   };
   int i = 0;
   for (const auto& [text, expect] : cases) {
