@@ -59,7 +59,8 @@ local statue = torte.material.matte{color = {0.75, 0.72, 0.68}}
 local stone = torte.material.matte{color = {0.55, 0.56, 0.6}}
 
 local hero_path = opt.mesh ~= "" and opt.mesh or opt.data .. "/lucy/lucy_100k.obj"
-local hero, hero_tf = place(hero_path, opt.levels, 2.0, 0, 0, 0)
+-- Turned 180 degrees: the Stanford scan faces +z, away from the camera.
+local hero, hero_tf = place(hero_path, opt.levels, 2.0, 0, 0, 180)
 scene:add(torte.shape.mesh{mesh = hero, transform = hero_tf, material = statue})
 -- Everything in world space lies within x, z in [-extent, extent] and y in [0, 2].
 local extent = 1.2
