@@ -79,7 +79,9 @@ void Scene::release_positions() {
 
 bool Scene::intersect(Ray& ray, Hit* hit) const {
   Hit h;
-  accel_.intersect(SingleRay(ray).soa(), 1, &h, TraceKernel::kSingle);
+  const SingleRay one(ray);
+  accel_.intersect(one.soa(), 1, &h, TraceKernel::kSingle);
+  if (!alpha_masks.empty()) pass_cut_outs(one.soa(), 1, &h);
   if (h.prim == kNoHit) return false;
   *hit = h;
   ray.t_max = h.t;
@@ -88,7 +90,9 @@ bool Scene::intersect(Ray& ray, Hit* hit) const {
 
 bool Scene::occluded(const Ray& ray) const {
   uint8_t blocked = 0;
-  accel_.occluded(SingleRay(ray).soa(), 1, &blocked, TraceKernel::kSingle);
+  const SingleRay one(ray);
+  accel_.occluded(one.soa(), 1, &blocked, TraceKernel::kSingle);
+  if (!alpha_masks.empty()) occluded_past_cut_outs(one.soa(), 1, &blocked);
   return blocked != 0;
 }
 
