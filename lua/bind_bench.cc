@@ -32,6 +32,7 @@
 
 #include "binding.h"
 #include "camera/camera.h"
+#include "core/memory_budget.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "light/light.h"
@@ -382,6 +383,9 @@ int l_bench(lua_State* L) {
   }
 #endif
   const Camera camera(*camera_desc, width, height);
+  // Per ray: its seven floats (twice while the arrays grow), the reference's and the timed hits, occlusion flags.
+  reserve_memory(uint64_t(width) * uint64_t(height) * (2 * 7 * sizeof(float) + 2 * sizeof(Hit) + 2),
+                 "torte.bench: the rays of a " + std::to_string(width) + "x" + std::to_string(height) + " camera");
 
   TargetGuard guard;
   // The reference: every ray on the scalar target through the single-ray kernel.

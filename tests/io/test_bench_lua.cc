@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/memory_budget.h"
 #include "runtime.h"
 #include "test_support.h"
 #include "types.h"
@@ -100,6 +101,12 @@ TEST_CASE("torte.bench: bad keys and impossible requests are errors naming the k
   CHECK_THAT(s.run("local e = torte.scene(); e:add(torte.shape.sphere{}); "
                    "torte.bench{scene = e, camera = camera, rays = 'shadow'}"),
              Catch::Contains("\"shadow\" needs a scene with lights"));
+  {  // rays that would not fit are refused before they are made
+    set_memory_limit(uint64_t(1) << 30);
+    CHECK_THAT(s.run("torte.bench{scene = scene, camera = camera, width = 8192, height = 8192}"),
+               Catch::Contains("torte.bench: the rays of a 8192x8192 camera"));
+    set_memory_limit(0);
+  }
   // A failed call leaves the target as it was too.
   CHECK(s.run("assert(torte.simd.current() == torte.simd.targets()[1])") == "");
 }
