@@ -66,7 +66,10 @@ const SurfaceEmission* patch_emission(const EmitterView& scene, const SurfaceHit
 Rgb area_radiance(const EmitterView& scene, const Light& light, Vec3f p, Vec3f n, Vec2f uv) {
   // A constant texture is folded into the parameter's value (1 for an untextured light).
   if (light.emission_texture.texture < 0 || !scene.textures) return light.radiance * light.emission_texture.value;
-  return light.radiance * scene.textures->eval(light.emission_texture, TextureContext{p, n, uv, {}, {}, 0});
+  const Rgb t = scene.textures->eval(light.emission_texture, TextureContext{p, n, uv, {}, {}, 0});
+  // A texture graph may compute negative or non-finite values (arithmetic nodes): no light there.
+  auto clean = [](float v) { return v > 0 && v < 3.4e38f ? v : 0.0f; };
+  return light.radiance * Rgb(clean(t.r), clean(t.g), clean(t.b));
 }
 
 Rgb area_emission(const EmitterView& scene, const Light& light, const SurfaceHit& hit, Vec3f w) {
