@@ -28,6 +28,7 @@ namespace torte::lua {
 namespace {
 
 constexpr const char* kFn = "torte.gltf.load";
+constexpr double kLumensPerWatt = 683;
 
 // tinygltf hands over every image's encoded bytes (from a file, a data: URI or a buffer view of a .glb); they are
 // kept as they are (not decoded) and written to a file only when the image is embedded: OpenImageIO's texture
@@ -397,7 +398,9 @@ struct Importer {
     l->origin = std::string(kFn) + " light " + std::to_string(index);
     Rgb color(1);
     if (g.color.size() >= 3) color = Rgb(float(g.color[0]), float(g.color[1]), float(g.color[2]));
-    l->radiance = color * float(g.intensity);  // candela (point, spot) and lux (directional), as torte's units
+    // glTF's candela (point, spot) and lux (directional) are photometric; torte's intensities are radiometric
+    // (W/sr, W/m^2): 683 lm/W, the luminous efficacy at 555 nm, as Blender's exporter converts its watts.
+    l->radiance = color * float(g.intensity / kLumensPerWatt);
     if (!l->radiance.is_finite() || l->radiance.r < 0 || l->radiance.g < 0 || l->radiance.b < 0)
       fail("light " + std::to_string(index) + ": colour and intensity must be finite and non-negative");
     l->position = world.apply_point(Vec3f());
