@@ -388,8 +388,12 @@ int l_bench(lua_State* L) {
                  "torte.bench: the rays of a " + std::to_string(width) + "x" + std::to_string(height) + " camera");
 
   TargetGuard guard;
-  // The reference: every ray on the scalar target through the single-ray kernel.
-  simd::use_target("scalar");
+  // The reference: every ray through the single-ray kernel on the lowest target compiled in ("scalar", Highway's
+  // EMU128, in every build but those that compile one target only, such as the sanitizer builds).
+  std::string reference_target;
+  for (const simd::TargetInfo& t : simd::compiled_targets())
+    if (t.supported) reference_target = t.name;
+  simd::use_target(reference_target);
   RayArrays rays = camera_rays(camera, width, height);
   std::vector<Hit> ref_hits(rays.size()), hits;
   std::vector<uint8_t> ref_blocked, blocked;
@@ -459,6 +463,7 @@ int l_bench(lua_State* L) {
   set_string("kernel", kernel_name);
   set_string("rays_kind", rays_name);
   set_string("simd", used_target);
+  set_string("reference_simd", reference_target);
   set_integer("threads", size_t(threads));
   lua_pushboolean(L, built.reused && embree_reused);  // kernel = "embree": and its Embree scene
   lua_setfield(L, -2, "scene_reused");

@@ -588,7 +588,7 @@ function torte.simd.use(name) end
 ---@return string
 function torte.simd.current() end
 
----Times one traversal kernel on one kind of ray through the scene, on a chosen SIMD target, and validates every result against the scalar single-ray reference. Rays: `camera` (one per pixel centre, in 4x4 blocks), `diffuse` (a cosine-distributed ray from each camera hit) or `shadow` (from each camera hit towards a sampled light; needs lights). Returns `{mrays, mrays_min, mrays_max, seconds (median), rays, hits, reference_hits, mismatches, valid, kernel, rays_kind, simd, threads, scene_reused}`; `valid` is false when more than 1 ray in 10^4 disagrees with the reference. The script's SIMD target is restored afterwards.
+---Times one traversal kernel on one kind of ray through the scene, on a chosen SIMD target, and validates every result against the scalar single-ray reference. Rays: `camera` (one per pixel centre, in 4x4 blocks), `diffuse` (a cosine-distributed ray from each camera hit) or `shadow` (from each camera hit towards a sampled light; needs lights). Returns `{mrays, mrays_min, mrays_max, seconds (median), rays, hits, reference_hits, mismatches, valid, kernel, rays_kind, simd, reference_simd, threads, scene_reused}`; `valid` is false when more than 1 ray in 10^4 disagrees with the reference, the single-ray kernel on the lowest target compiled in (`reference_simd`: "scalar" in every build but the one-target sanitizer builds). The script's SIMD target is restored afterwards.
 ---@param args torte.bench.args
 ---@return table
 function torte.bench(args) end
