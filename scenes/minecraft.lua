@@ -7,7 +7,7 @@
 --                              [sun_elevation=35] [sun_azimuth=-50] [emission=true] [skip_bad_chunks=false] [sea=true]
 --                              [sea_radius=2e7]
 --                              [width=960] [height=540] [spp=16] [max_depth=6] [integrator=path|direct|lt]
---                              [output=out/minecraft.exr]
+--                              [output=out/minecraft.exr] [seed=0]
 --                              [bench=false] [reps=5] [threads=1] [rays=camera,diffuse,shadow]
 --                              [kernels=single,packet8,packet16] [targets=all] [embree=true]
 --
@@ -34,7 +34,7 @@ local opt = torte.options{
   world = data_dir .. "/bluenbt-1.20.1-paper", box = "", camera = "", fov = 40, sun_elevation = 35,
   sun_azimuth = -50, emission = true, skip_bad_chunks = false, sea = true, sea_radius = 2e7,
   width = 960, height = 540, spp = 16, max_depth = 6, integrator = "path", output = "out/minecraft.exr",
-  bench = false, reps = 5, threads = 1, rays = "camera,diffuse,shadow", kernels = "single,packet8,packet16",
+  seed = 0, bench = false, reps = 5, threads = 1, rays = "camera,diffuse,shadow", kernels = "single,packet8,packet16",
   targets = "all", embree = true,
 }
 
@@ -203,5 +203,5 @@ if opt.bench then
   return
 end
 local image = torte.render{scene = scene, camera = camera, width = opt.width, height = opt.height, spp = opt.spp,
-                           max_depth = opt.max_depth, integrator = opt.integrator}
+                           max_depth = opt.max_depth, integrator = opt.integrator, seed = opt.seed}
 torte.save(image, opt.output)

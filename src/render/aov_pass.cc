@@ -47,8 +47,7 @@ Rgb clamp01(Rgb c) { return {std::clamp(c.r, 0.0f, 1.0f), std::clamp(c.g, 0.0f, 
 
 Rgb sky(const Scene& scene, Vec3f d) {
   Rgb L;
-  for (const Light& light : scene.lights)
-    if (is_infinite_light(light)) L += escaped_radiance(light, d);
+  for (const uint32_t l : scene.infinite_lights) L += escaped_radiance(scene.lights[l], d);
   return clamp01(L);
 }
 

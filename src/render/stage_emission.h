@@ -24,9 +24,8 @@ inline float emission_weight(const Scene& scene, const PathState& ps, const Tran
 /// Adds the radiance of the infinite lights seen along escaped ray (o, d) to path i.
 inline void add_escaped_radiance(const Scene& scene, const TransportRules& rules, PathState& ps, uint32_t i, Vec3f o,
                                  Vec3f d) {
-  for (size_t l = 0; l < scene.lights.size(); ++l) {
+  for (const uint32_t l : scene.infinite_lights) {
     const Light& light = scene.lights[l];
-    if (!is_infinite_light(light)) continue;
     const Rgb le = escaped_radiance(light, d);
     if (le.is_black()) continue;
     const float w = emission_weight(scene, ps, rules, i, int(l), light_pdf(scene, light, o, d, nullptr, kInfinity));

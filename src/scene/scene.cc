@@ -51,6 +51,11 @@ void Scene::finalize(ProgressCounter* progress) {
       prepare_sphere_light(quadrics[light.object - meshes.size()], &light);
     }
   }
+  // Escaped rays look at these only: a loop over every light per escaped ray cost 10,000 tests on
+  // scenes/many-lights.lua (three quarters of its render time).
+  infinite_lights.clear();
+  for (size_t i = 0; i < lights.size(); ++i)
+    if (is_infinite_light(lights[i])) infinite_lights.push_back(uint32_t(i));
   std::vector<float> power(lights.size());
   for (size_t i = 0; i < lights.size(); ++i) {
     power[i] = light_power(*this, lights[i]);

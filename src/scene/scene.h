@@ -72,6 +72,7 @@ class Scene {
   std::vector<AlphaMask> alpha_masks;
   TextureTable textures;
   std::vector<Light> lights;
+  std::vector<uint32_t> infinite_lights;  // indices of the lights at infinity (what escaped rays see); finalize()
   Distribution1D light_selection;  // light selection proportional to power (light paths; NEE with "power")
   LightBvh light_bvh;              // light selection for a shading point (NEE; light/light_bvh.h)
 
