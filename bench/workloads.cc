@@ -264,12 +264,6 @@ int image_resolution() {
   return r;
 }
 
-void RayBatch::push(const Ray& r) {
-  ox.push_back(r.o.x), oy.push_back(r.o.y), oz.push_back(r.o.z);
-  dx.push_back(r.d.x), dy.push_back(r.d.y), dz.push_back(r.d.z);
-  t_max.push_back(r.t_max);
-}
-
 Check check_closest(const Reference& ref, const float* t, size_t n, float rel_tol) {
   Check c;
   c.rays = n;

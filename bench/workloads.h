@@ -45,17 +45,7 @@ int image_resolution();
 
 // ---- rays ------------------------------------------------------------------------------------------------------
 
-struct RayBatch {
-  std::vector<float> ox, oy, oz, dx, dy, dz, t_max;
-  size_t size() const { return ox.size(); }
-  void push(const Ray& r);
-  Ray ray(size_t i) const { return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, t_max[i]}; }
-  // View of rays [offset, size()).
-  RaySoA soa(size_t offset = 0) const {
-    return {ox.data() + offset, oy.data() + offset, oz.data() + offset, dx.data() + offset,
-            dy.data() + offset, dz.data() + offset, t_max.data() + offset};
-  }
-};
+using RayBatch = RayArrays;  // accel/hit.h
 
 // Ground truth of a workload, from the scalar reference.
 struct Reference {

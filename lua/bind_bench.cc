@@ -45,20 +45,6 @@ namespace {
 
 enum class RayKind { kCamera, kDiffuse, kShadow };
 
-struct RayArrays {
-  std::vector<float> ox, oy, oz, dx, dy, dz, t_max;
-  size_t size() const { return ox.size(); }
-  void push(Vec3f o, Vec3f d, float t) {
-    ox.push_back(o.x), oy.push_back(o.y), oz.push_back(o.z);
-    dx.push_back(d.x), dy.push_back(d.y), dz.push_back(d.z);
-    t_max.push_back(t);
-  }
-  RaySoA soa(size_t offset = 0) const {
-    return {ox.data() + offset, oy.data() + offset, oz.data() + offset, dx.data() + offset,
-            dy.data() + offset, dz.data() + offset, t_max.data() + offset};
-  }
-};
-
 RayArrays camera_rays(const Camera& camera, int width, int height) {
   RayArrays rays;
   for (int ty = 0; ty < height; ty += 8)
@@ -70,7 +56,7 @@ RayArrays camera_rays(const Camera& camera, int width, int height) {
               const int x = tx + (block % 2) * 4 + col, y = ty + (block / 2) * 4 + half * 2 + row;
               if (x >= width || y >= height) continue;
               const Ray r = camera.generate_ray(Vec2f(float(x) + 0.5f, float(y) + 0.5f));
-              rays.push(r.o, r.d, r.t_max);
+              rays.push(r);
             }
   return rays;
 }
@@ -92,14 +78,14 @@ RayArrays secondary_rays(const Scene& scene, const RayArrays& primary, const std
     if (kind == RayKind::kDiffuse) {
       const Vec3f n = dot(s.ng, pr.d) > 0 ? -s.ng : s.ng;
       const Vec3f d = Frame::from_z(n).to_world(sample_cosine_hemisphere(hashed_2d(seed, 1, i)));
-      rays.push(offset_origin(s.p, s.ng, d), d, kInfinity);
+      rays.push({offset_origin(s.p, s.ng, d), d, kInfinity});
     } else {
       const Light& light = scene.lights[Pcg32(mix_bits(seed + i), 3).next_u32() % scene.lights.size()];
       LightSample ls;
       if (!sample_light(scene, light, s.p, hashed_2d(seed, 2, i), &ls)) continue;
       const Vec3f o = offset_origin(s.p, s.ng, ls.wi);
       const float t = ls.distance == kInfinity ? kInfinity : length(s.p + ls.wi * ls.distance - o) * (1 - 1e-4f);
-      rays.push(o, ls.wi, t);
+      rays.push({o, ls.wi, t});
     }
   }
   return rays;

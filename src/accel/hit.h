@@ -1,6 +1,7 @@
 // Result of tracing one ray (20 bytes): enough to rebuild the surface later.
 #pragma once
 #include <cstdint>
+#include <vector>
 
 #include "core/ray.h"
 #include "core/vec.h"
@@ -27,6 +28,27 @@ struct RaySoA {
   const float *ox, *oy, *oz;
   const float *dx, *dy, *dz;
   const float* t_max;
+};
+
+/// Rays owned as structure of arrays, for code that builds a batch ray by ray (benchmark workloads, torte.bench,
+/// the continuations of rays past cut-outs); soa() is the view the kernels take.
+struct RayArrays {
+  std::vector<float> ox, oy, oz, dx, dy, dz, t_max;
+  size_t size() const { return ox.size(); }
+  void push(const Ray& r) {
+    ox.push_back(r.o.x), oy.push_back(r.o.y), oz.push_back(r.o.z);
+    dx.push_back(r.d.x), dy.push_back(r.d.y), dz.push_back(r.d.z);
+    t_max.push_back(r.t_max);
+  }
+  void clear() {
+    for (std::vector<float>* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_max}) v->clear();
+  }
+  Ray ray(size_t i) const { return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, t_max[i]}; }
+  // View of rays [offset, size()).
+  RaySoA soa(size_t offset = 0) const {
+    return {ox.data() + offset, oy.data() + offset, oz.data() + offset, dx.data() + offset,
+            dy.data() + offset, dz.data() + offset, t_max.data() + offset};
+  }
 };
 
 // Ray i of a RaySoA (for the code that traces one ray at a time), with t_max replaced when given.

@@ -120,19 +120,6 @@ namespace {
 
 constexpr int kMaxAlphaLayers = 64;  // cut-out layers a ray passes; the next hit counts as opaque
 
-struct RayBatch {
-  std::vector<float> ox, oy, oz, dx, dy, dz, t_max;
-  void push(const Ray& r) {
-    ox.push_back(r.o.x), oy.push_back(r.o.y), oz.push_back(r.o.z);
-    dx.push_back(r.d.x), dy.push_back(r.d.y), dz.push_back(r.d.z);
-    t_max.push_back(r.t_max);
-  }
-  void clear() {
-    for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_max}) v->clear();
-  }
-  RaySoA soa() const { return {ox.data(), oy.data(), oz.data(), dx.data(), dy.data(), dz.data(), t_max.data()}; }
-};
-
 uint32_t float_bits(float f) {
   uint32_t u;
   std::memcpy(&u, &f, 4);
@@ -158,7 +145,7 @@ void Scene::pass_cut_outs(const RaySoA& rays, size_t count, Hit* hits) const {
   std::vector<uint32_t> pending;
   for (size_t i = 0; i < count; ++i)
     if (hits[i].prim != kNoHit && cut_out(ray_at(rays, i), hits[i])) pending.push_back(uint32_t(i));
-  RayBatch next;
+  RayArrays next;
   std::vector<float> start;  // where each continuation starts along its original ray
   std::vector<Hit> found;
   for (int layer = 0; layer < kMaxAlphaLayers && !pending.empty(); ++layer) {
@@ -190,7 +177,7 @@ void Scene::pass_cut_outs(const RaySoA& rays, size_t count, Hit* hits) const {
 }
 
 void Scene::occluded_past_cut_outs(const RaySoA& rays, size_t count, uint8_t* blocked) const {
-  RayBatch blocked_rays;
+  RayArrays blocked_rays;
   std::vector<uint32_t> index;
   for (size_t i = 0; i < count; ++i)
     if (blocked[i]) {
