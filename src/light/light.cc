@@ -113,20 +113,25 @@ Rgb escaped_radiance(const Light& light, Vec3f dir) {
 void sample_area_light_point(const EmitterView& scene, const Light& light, Vec2f u, Vec3f* q, Vec3f* n,
                              float* pdf_area, Vec2f* uv) {
   if (light.object < scene.meshes.size()) {
-    const TriangleMesh& mesh = scene.meshes[light.object];
     float u_rest;
     const int tri = light.triangles.sample_discrete(u.x, nullptr, &u_rest);
-    const uint32_t* idx = mesh.triangle(size_t(tri));
-    const Vec3f p0 = mesh.position(idx[0]), p1 = mesh.position(idx[1]), p2 = mesh.position(idx[2]);
+    const EmitterTriangle& t = light.emitter_triangles[size_t(tri)];
     const Vec3f b = sample_uniform_triangle(Vec2f(u_rest, u.y));
-    *q = p0 * b.x + p1 * b.y + p2 * b.z;
-    *n = normalize(cross(p1 - p0, p2 - p0));
+    *q = t.p0 + t.e1 * b.y + t.e2 * b.z;
+    *n = t.n;
+    *pdf_area = 1 / light.area;  // triangle chosen by area, point uniform on it
+    const TriangleMesh& mesh = scene.meshes[light.object];
+    const bool need_uv = uv && mesh.has_uvs();
+    if (!mesh.has_normals() && !need_uv) {
+      if (uv) *uv = Vec2f();
+      return;
+    }
+    const uint32_t* idx = mesh.triangle(size_t(tri));
     if (mesh.has_normals()) {
       const Vec3f ns = mesh.normal(idx[0]) * b.x + mesh.normal(idx[1]) * b.y + mesh.normal(idx[2]) * b.z;
       if (length_squared(ns) > 0) *n = face_forward(*n, ns);
     }
-    *pdf_area = 1 / light.area;  // triangle chosen by area, point uniform on it
-    if (uv) *uv = mesh.has_uvs() ? mesh.uv(idx[0]) * b.x + mesh.uv(idx[1]) * b.y + mesh.uv(idx[2]) * b.z : Vec2f();
+    if (uv) *uv = need_uv ? mesh.uv(idx[0]) * b.x + mesh.uv(idx[1]) * b.y + mesh.uv(idx[2]) * b.z : Vec2f();
   } else {
     const SurfacePoint sp = sample_area(scene.quadrics[light.object - scene.meshes.size()], u, pdf_area);
     *q = sp.p;

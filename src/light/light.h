@@ -61,6 +61,13 @@ struct EmitterView {
 
 enum class LightKind : uint8_t { Point, Area, Infinite, Spot, Distant, Environment, Sky, Patches };
 
+/// A triangle of an emitting mesh as light sampling reads it: a vertex, the two edges from it and the unit normal
+/// of its winding, in world space. A point at barycentrics (b1, b2) is p0 + e1 b1 + e2 b2.
+struct EmitterTriangle {
+  Vec3f p0, e1, e2, n;
+};
+static_assert(sizeof(EmitterTriangle) == 48);
+
 struct Light {
   LightKind kind = LightKind::Point;
   Rgb radiance;          // point/spot: intensity (W/sr); area: emitted radiance; infinite: radiance from every
@@ -75,6 +82,9 @@ struct Light {
   bool two_sided = false;  // area: emits on both sides
   float area = 0;        // area: total world area
   Distribution1D triangles;  // area light on a mesh: triangle selection by area
+  // Area light on a mesh: its triangles ready to sample, so a light sample reads one record instead of an index
+  // triple and three vertices through the mesh (a tenth of a Cornell box's render time went there).
+  std::vector<EmitterTriangle> emitter_triangles;
   // Area light on a sphere under a similarity transform (set by prepare_sphere_light): solid-angle sampling.
   bool sphere_cone = false;
   Vec3f sphere_center;

@@ -191,6 +191,7 @@ LightBvh::LightBvh(const EmitterView& scene, std::span<const Light> lights, std:
     nodes_.reserve(2 * ids.size());
     build(ids, 0, ids.size(), all, 0, 0);
   }
+  if (ids.size() == 1 && infinite_.empty()) only_light_ = int(ids[0]);
 }
 
 uint32_t LightBvh::build(std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<LightBounds>& all,
@@ -253,6 +254,10 @@ uint32_t LightBvh::build(std::vector<uint32_t>& ids, size_t begin, size_t end, c
 }
 
 int LightBvh::sample(Vec3f p, Vec3f n, float u, float* pmf) const {
+  if (only_light_ >= 0) {
+    *pmf = 1;
+    return only_light_;
+  }
   *pmf = 0;
   const bool has_bvh = !nodes_.empty();
   const float p_inf = infinite_probability(p, n);
@@ -300,6 +305,7 @@ float LightBvh::infinite_probability(Vec3f p, Vec3f n) const {
 
 float LightBvh::pmf(Vec3f p, Vec3f n, int light) const {
   if (light < 0 || size_t(light) >= light_count_ || in_bvh_[size_t(light)] == 0) return 0;
+  if (only_light_ >= 0) return 1;  // in_bvh_ holds one light then
   const float p_inf = infinite_probability(p, n);
   if (in_bvh_[size_t(light)] == 2) return p_inf / float(infinite_.size());
   float prob = 1 - p_inf;

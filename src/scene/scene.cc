@@ -46,6 +46,14 @@ void Scene::finalize(ProgressCounter* progress) {
       if (!(total > 0)) throw Error(light_name(light) + ": the emitting mesh has zero area");
       light.triangles = Distribution1D(areas);
       light.area = float(total);
+      light.emitter_triangles.resize(areas.size());
+      for (size_t t = 0; t < areas.size(); ++t) {
+        const uint32_t* idx = mesh.triangle(t);
+        const Vec3f p0 = mesh.position(idx[0]), e1 = mesh.position(idx[1]) - p0, e2 = mesh.position(idx[2]) - p0;
+        const Vec3f c = cross(e1, e2);
+        const float len = length(c);
+        light.emitter_triangles[t] = {p0, e1, e2, len > 0 ? c / len : Vec3f{0, 0, 1}};  // zero area: never chosen
+      }
     } else {
       light.area = area(quadrics[light.object - meshes.size()]);
       prepare_sphere_light(quadrics[light.object - meshes.size()], &light);
