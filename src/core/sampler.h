@@ -4,9 +4,9 @@
 // path's numbers in any order. Each 2D dimension pair gets its own hash-derived Owen scramble and its own
 // index shuffle, which decorrelates pairs while keeping each pair stratified for power-of-two sample counts.
 //
-// get_2d / get_1d are inline: the render loop draws several per path and bounce, and as out-of-line calls they
-// were 10 % of a Cornell box render. sampler.cc keeps the plain composition (get_2d_reference) that tests hold
-// the inline arithmetic to, bit for bit.
+// get_2d / get_1d are always inlined: the render loop draws several per path and bounce, and as out-of-line calls
+// they were 10 % of a Cornell box render (clang called get_2d out of line when it was merely inline). sampler.cc
+// keeps the plain composition (get_2d_reference) that tests hold the inline arithmetic to, bit for bit.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -100,7 +100,7 @@ class Sampler {
   uint64_t seed() const { return seed_; }
   /// The point of 2D dimension pair `dimension` for (pixel, sample_index): Owen-scrambled Sobol dimensions 0 and
   /// 1 at an Owen-shuffled index. dimension counts pairs and singles alike: callers give each use its own number.
-  Vec2f get_2d(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const {
+  [[gnu::always_inline]] Vec2f get_2d(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const {
     if (primary_) [[unlikely]]
       return primary_->get_2d(sample_index, dimension);
     using namespace sampler_detail;
@@ -121,7 +121,7 @@ class Sampler {
     return {to_unit_float(uint32_t(both >> 32)), to_unit_float(uint32_t(both))};
   }
   /// get_2d(pixel, sample_index, dimension).x, without computing y.
-  float get_1d(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const {
+  [[gnu::always_inline]] float get_1d(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const {
     if (primary_) [[unlikely]]
       return primary_->get_2d(sample_index, dimension).x;
     using namespace sampler_detail;

@@ -20,35 +20,7 @@ Vec3f spherical_direction(float sin_theta, float cos_theta, float u) {
   return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
 }
 
-// mask ? a : b for a mask of all ones or all zeros, in bit operations: clang turns a plain select of floats into a
-// branch for SSE2, which mispredicts half the time on random samples.
-inline float select_bits(uint32_t mask, float a, float b) {
-  return std::bit_cast<float>((std::bit_cast<uint32_t>(a) & mask) | (std::bit_cast<uint32_t>(b) & ~mask));
-}
-
-// sin and cos of |phi| <= pi/4 from their Taylor series (truncation error below 2e-9, under one float ulp of the
-// results): the concentric map only needs this range, and a libm call per BSDF sample was 3 % of a Cornell render.
-inline void sincos_quarter_turn(float phi, float* s, float* c) {
-  const float p2 = phi * phi;
-  *s = phi * (1 + p2 * (-1.0f / 6 + p2 * (1.0f / 120 + p2 * (-1.0f / 5040 + p2 * (1.0f / 362880)))));
-  *c = 1 + p2 * (-0.5f + p2 * (1.0f / 24 + p2 * (-1.0f / 720 + p2 * (1.0f / 40320 + p2 * (-1.0f / 3628800)))));
-}
 }  // namespace
-
-Vec2f sample_uniform_disk_concentric(Vec2f u) {
-  // Shirley & Chiu 1997: maps concentric squares to concentric circles, so strata of u stay compact on the disk
-  // (better than the polar map for stratified and low-discrepancy samples). The angle is pi/4 * (y/x) in the
-  // wedges around the x axis and pi/2 - pi/4 * (x/y) around the y axis, so both need sin and cos of an angle in
-  // [-pi/4, pi/4] only (cos(pi/2 - a) = sin(a)).
-  // Selects instead of branches: u is random, so a branch on the wedge mispredicts half the time.
-  const float x = 2 * u.x - 1, y = 2 * u.y - 1;
-  const uint32_t x_wedge = 0u - uint32_t(std::fabs(x) > std::fabs(y));  // all ones in the x wedge
-  const float r = select_bits(x_wedge, x, y), other = select_bits(x_wedge, y, x);
-  if (r == 0) return {0, 0};  // the centre (then x = y = 0)
-  float s, c;
-  sincos_quarter_turn((kPi / 4) * (other / r), &s, &c);
-  return {r * select_bits(x_wedge, c, s), r * select_bits(x_wedge, s, c)};
-}
 
 Vec3f sample_uniform_sphere(Vec2f u) {
   const float z = 1 - 2 * u.x;
@@ -60,28 +32,12 @@ Vec3f sample_uniform_hemisphere(Vec2f u) {
   return spherical_direction(std::sqrt(std::max(0.0f, 1 - z * z)), z, u.y);
 }
 
-Vec3f sample_cosine_hemisphere(Vec2f u) {
-  // Malley's method: uniform on the disk, projected up to the hemisphere, has density cos(theta)/pi.
-  const Vec2f d = sample_uniform_disk_concentric(u);
-  return {d.x, d.y, std::sqrt(std::max(0.0f, 1 - d.x * d.x - d.y * d.y))};
-}
-
 Vec3f sample_uniform_cone(Vec2f u, float cos_theta_max) {
   // Work with a = 1 - cos(theta), uniform in [0, 1 - cos_theta_max]: sin^2 = a (2 - a) keeps full precision for the
   // narrow cones of small, distant lights, where 1 - cos^2 would cancel catastrophically.
   const float a = u.x * (1 - cos_theta_max);
   const float cos_theta = 1 - a;
   return spherical_direction(std::sqrt(std::max(0.0f, a * (2 - a))), cos_theta, u.y);
-}
-
-Vec3f sample_uniform_triangle(Vec2f u) {
-  // Heitz 2019, "A Low-Distortion Map Between Triangle and Square": shrinks the square's lower or upper half
-  // (split along the diagonal) onto the triangle. Unlike the sqrt map it keeps strata compact and needs no sqrt.
-  // Both halves in one expression: the half of the smaller coordinate comes off both (u.x - u.x/2 = u.x/2 exactly).
-  // u is random, so a branch on the half mispredicts half the time.
-  const float h = std::min(u.x, u.y) / 2;
-  const float b0 = u.x - h, b1 = u.y - h;
-  return {b0, b1, std::max(0.0f, 1 - b0 - b1)};
 }
 
 Distribution1D::Distribution1D(std::span<const float> weights) : func_(weights.begin(), weights.end()) {

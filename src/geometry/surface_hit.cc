@@ -13,7 +13,8 @@ SurfaceHit triangle_surface(const TriangleMesh& mesh, const uint32_t* idx, const
   const float b0 = 1 - b1 - b2;
   // Interpolating the vertices is more accurate than o + t d far from the origin.
   s.p = p0 * b0 + p1 * b1 + p2 * b2;
-  s.ng = normalize(cross(p1 - p0, p2 - p0));
+  const Vec3f e1 = p1 - p0, e2 = p2 - p0, c = cross(e1, e2);
+  s.ng = normalize(c);
   s.ns = s.ng;
   if (mesh.has_normals()) {
     const Vec3f n = mesh.normal(idx[0]) * b0 + mesh.normal(idx[1]) * b1 + mesh.normal(idx[2]) * b2;
@@ -23,13 +24,20 @@ SurfaceHit triangle_surface(const TriangleMesh& mesh, const uint32_t* idx, const
       s.ng = face_forward(s.ng, s.ns);
     }
   }
-  // Vertex uvs: the mesh's, or a fixed parameterization (0,0), (1,0), (1,1) of every triangle.
-  Vec2f t0(0, 0), t1(1, 0), t2(1, 1);
-  if (mesh.has_uvs()) {
-    t0 = mesh.uv(idx[0]);
-    t1 = mesh.uv(idx[1]);
-    t2 = mesh.uv(idx[2]);
+  if (!mesh.has_uvs()) {
+    // The fixed parameterization (0,0), (1,0), (1,1) of every triangle: uv = (b1 + b2, b2), and pbrt's
+    // construction below reduces to dp/du = p1 - p0, dp/dv = p2 - p1 (no division per hit).
+    s.uv = Vec2f(b1 + b2, b2);
+    s.dpdu = e1;
+    s.dpdv = p2 - p1;
+    if (!(length_squared(c) > 0)) {  // degenerate triangle: any tangent frame
+      const Frame f = Frame::from_z(s.ng);
+      s.dpdu = f.s;
+      s.dpdv = f.t;
+    }
+    return s;
   }
+  const Vec2f t0 = mesh.uv(idx[0]), t1 = mesh.uv(idx[1]), t2 = mesh.uv(idx[2]);
   s.uv = t0 * b0 + t1 * b1 + t2 * b2;
   // dp/du and dp/dv from the triangle's edges in position and uv (pbrt's construction).
   const Vec2f duv02 = t0 - t2, duv12 = t1 - t2;

@@ -65,6 +65,17 @@ struct LightCandidate {
   bool delta;      // point-like light: no MIS
 };
 
+// The sampler's numbers one scattering event uses. A kernel draws them for its whole queue in one loop of
+// independent hashes before it shades (draw_light_numbers, draw_scatter_numbers): the out-of-order core then
+// overlaps many hits' work, where drawing them inside the long shading loop left their latency exposed.
+struct ShadeNumbers {
+  float light_select;
+  Vec2f light_point;
+  Vec2f bsdf;
+  float lobe;
+  float roulette;
+};
+
 // Per-type scratch arrays, reused between wavefronts.
 template <class Bsdf>
 struct ShadeScratch {
@@ -74,11 +85,13 @@ struct ShadeScratch {
   std::vector<LightCandidate> lights;
   std::vector<Rgb> f;
   std::vector<float> pdf;
-  /// Ready for a queue of n hits: frames and local directions sized, BSDFs and light candidates emptied.
+  std::vector<ShadeNumbers> u;  // per queue entry: its sampler numbers, drawn before they are used
+  /// Ready for a queue of n hits: frames, local directions and numbers sized, BSDFs and light candidates emptied.
   void begin(size_t n) {
     bsdf.clear();
     frame.resize(n);
     wo_local.resize(n);
+    u.resize(n);
     lights.clear();
   }
 };
@@ -94,8 +107,9 @@ inline bool consistent_sides(Vec3f ng, Vec3f wo, Vec3f wi, Vec3f wo_local, Vec3f
 inline void push_shadow_ray(ShadowQueue& shadows, const SurfaceHit& s, Vec3f wi, float distance, Rgb contribution,
                             uint32_t path) {
   const Vec3f o = offset_origin(s.p, s.ng, wi);
-  // Stop just short of the light point (measured from the offset origin) so the light does not shadow itself.
-  const float t_max = distance == kInfinity ? kInfinity : length(s.p + wi * distance - o) * (1 - 1e-4f);
+  // Stop just short of the light point so the light does not shadow itself. The light point's parameter along
+  // the ray from the offset origin is its projection, distance - wi.(o - p): no square root per shadow ray.
+  const float t_max = distance == kInfinity ? kInfinity : (distance - dot(wi, o - s.p)) * (1 - 1e-4f);
   shadows.push(o, wi, t_max, contribution, path);
 }
 
@@ -104,8 +118,9 @@ inline void push_shadow_ray(ShadowQueue& shadows, const SurfaceHit& s, Vec3f wi,
 // next ray to ctx.next. A path that stops here is simply not pushed. Light paths (TransportMode::Importance)
 // also take the adjoint shading-normal factor |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|) (Veach 1997, 5.3).
 // `dim_base` offsets the roulette's sampler dimension (BDPT's light subpaths, as in sort_hits).
-inline void continue_path(const ShadeContext& ctx, uint32_t slot, const Frame& frame, Vec3f wo_local,
-                          const BsdfSample& bs, TransportMode mode = TransportMode::Radiance, uint32_t dim_base = 0) {
+// `u_roulette` is the path's roulette number (read only from rules.rr_depth events on).
+inline void continue_path_with(const ShadeContext& ctx, uint32_t slot, const Frame& frame, Vec3f wo_local,
+                               const BsdfSample& bs, TransportMode mode, float u_roulette) {
   PathState& ps = ctx.paths;
   const uint32_t i = ctx.rays.path[slot];
   const SurfaceHit& s = ctx.hits.surface[slot];
@@ -124,7 +139,7 @@ inline void continue_path(const ShadeContext& ctx, uint32_t slot, const Frame& f
   // inside glass are not cut for carrying "too much" radiance; compensated by 1/q (unbiased).
   if (depth + 1 >= ctx.rules.rr_depth) {
     const float q = std::min(0.95f, (beta * ps.eta_scale[i]).max_component());
-    if (!(ctx.sampler.get_1d(ps.pixel[i], ps.sample[i], dim_base + bounce_dim(depth, kDimRoulette)) < q)) return;
+    if (!(u_roulette < q)) return;
     beta = beta / q;
   }
   ps.beta[i] = beta;
@@ -134,6 +149,19 @@ inline void continue_path(const ShadeContext& ctx, uint32_t slot, const Frame& f
   ps.flags[i] = bs.is_specular() ? kPathSpecular : kPathScattered;
   ps.depth[i] = uint16_t(depth + 1);
   ctx.next.push(offset_origin(s.p, s.ng, wi), wi, kInfinity, i);
+}
+
+// continue_path_with drawing the roulette number of the path's event itself; `dim_base` offsets its sampler
+// dimension (BDPT's light subpaths, as in sort_hits).
+inline void continue_path(const ShadeContext& ctx, uint32_t slot, const Frame& frame, Vec3f wo_local,
+                          const BsdfSample& bs, TransportMode mode = TransportMode::Radiance, uint32_t dim_base = 0) {
+  const PathState& ps = ctx.paths;
+  const uint32_t i = ctx.rays.path[slot];
+  const uint16_t depth = ps.depth[i];
+  const float u = depth + 1 >= ctx.rules.rr_depth
+                      ? ctx.sampler.get_1d(ps.pixel[i], ps.sample[i], dim_base + bounce_dim(depth, kDimRoulette))
+                      : 0.0f;
+  continue_path_with(ctx, slot, frame, wo_local, bs, mode, u);
 }
 
 /// The OnShaded hook of integrators that need none.
@@ -162,24 +190,49 @@ void eval_candidates(ShadeScratch<Bsdf>& sc) {
   }
 }
 
+// Draws the numbers of BSDF sampling and Russian roulette (ShadeNumbers::bsdf, lobe, roulette) for every queue
+// entry: one tight loop, ahead of the sampling loop that reads them.
+template <MaterialType T, class Bsdf>
+void draw_scatter_numbers(const ShadeContext& ctx, std::span<const uint32_t> queue, ShadeScratch<Bsdf>& sc) {
+  const PathState& ps = ctx.paths;
+  const Sampler& sampler = ctx.sampler;
+  const int rr_depth = ctx.rules.rr_depth;
+  for (size_t k = 0; k < queue.size(); ++k) {
+    const uint32_t i = ctx.rays.path[queue[k]];
+    const uint16_t depth = ps.depth[i];
+    const uint32_t px = ps.pixel[i], si = ps.sample[i];
+    ShadeNumbers& u = sc.u[k];
+    u.bsdf = sampler.get_2d(px, si, bounce_dim(depth, kDimBsdf));
+    // Single-lobe models ignore the lobe sample: do not pay for a sampler dimension they do not read.
+    u.lobe = MaterialTraits<T>::kSingleLobe ? 0.5f : sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe));
+    u.roulette = depth + 1 >= rr_depth ? sampler.get_1d(px, si, bounce_dim(depth, kDimRoulette)) : 0.0f;
+  }
+}
+
+// Draws the numbers of light selection and the light point (ShadeNumbers::light_select, light_point) for every
+// queue entry, as draw_scatter_numbers does.
+inline void draw_light_numbers(const ShadeContext& ctx, std::span<const uint32_t> queue, std::span<ShadeNumbers> u) {
+  const PathState& ps = ctx.paths;
+  for (size_t k = 0; k < queue.size(); ++k) {
+    const uint32_t i = ctx.rays.path[queue[k]];
+    const uint16_t depth = ps.depth[i];
+    const uint32_t px = ps.pixel[i], si = ps.sample[i];
+    u[k].light_select = ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimLightSelect));
+    u[k].light_point = ctx.sampler.get_2d(px, si, bounce_dim(depth, kDimLightPoint));
+  }
+}
+
 // Phase 4 of a shading kernel: samples each slot's BSDF (built in sc by phase 1) for its path's next ray and
 // continues the path (continue_path, in transport `mode`); a path whose sample fails ends.
 template <MaterialType T, class Bsdf>
-void sample_next_rays(const ShadeContext& ctx, std::span<const uint32_t> queue, const ShadeScratch<Bsdf>& sc,
+void sample_next_rays(const ShadeContext& ctx, std::span<const uint32_t> queue, ShadeScratch<Bsdf>& sc,
                       TransportMode mode) {
-  const PathState& ps = ctx.paths;
+  draw_scatter_numbers<T>(ctx, queue, sc);
   for (size_t k = 0; k < queue.size(); ++k) {
-    const uint32_t slot = queue[k], i = ctx.rays.path[slot];
-    const uint16_t depth = ps.depth[i];
-    const uint32_t px = ps.pixel[i], si = ps.sample[i];
+    const ShadeNumbers& u = sc.u[k];
     BsdfSample bs;
-    // Single-lobe models ignore the lobe sample: do not pay for a sampler dimension they do not read.
-    const float uc =
-        MaterialTraits<T>::kSingleLobe ? 0.5f : ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe));
-    if (!sc.bsdf[k].sample(sc.wo_local[k], uc, ctx.sampler.get_2d(px, si, bounce_dim(depth, kDimBsdf)), &bs) ||
-        !(bs.pdf > 0))
-      continue;  // the path ends
-    continue_path(ctx, slot, sc.frame[k], sc.wo_local[k], bs, mode);
+    if (!sc.bsdf[k].sample(sc.wo_local[k], u.lobe, u.bsdf, &bs) || !(bs.pdf > 0)) continue;  // the path ends
+    continue_path_with(ctx, queue[k], sc.frame[k], sc.wo_local[k], bs, mode, u.roulette);
   }
 }
 
@@ -207,6 +260,7 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
   sc.begin(n);
 
   // Phase 1: BSDFs and light samples.
+  if (!scene.lights.empty() && !ctx.rules.sample_all_lights) detail::draw_light_numbers(ctx, queue, sc.u);
   for (size_t k = 0; k < n; ++k) {
     const uint32_t slot = queue[k], i = ctx.rays.path[slot];
     const SurfaceHit& s = ctx.hits.surface[slot];
@@ -226,12 +280,12 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
       }
     } else {
       float pmf;
-      const float u = ctx.sampler.get_1d(px, si, bounce_dim(ps.depth[i], kDimLightSelect));
+      const float u = sc.u[k].light_select;
       const int l = ctx.rules.light_sampler == LightSamplerKind::Bvh ? scene.light_bvh.sample(s.p, s.ng, u, &pmf)
                                                                       : scene.light_selection.sample_discrete(u, &pmf);
       if (l >= 0 && pmf > 0)
         detail::add_candidate(ctx, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], pmf,
-                              ctx.sampler.get_2d(px, si, bounce_dim(ps.depth[i], kDimLightPoint)));
+                              sc.u[k].light_point);
     }
   }
 
