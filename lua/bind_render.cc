@@ -1,5 +1,6 @@
 // torte.scene() and its methods, torte.render{...}, torte.filter.* and the image returned by render.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +25,24 @@
 namespace torte::lua {
 
 namespace {
+
+// Passes progress on to `inner` (or nowhere), and once a render has run for a second starts loading the image
+// module (OpenImageIO's ~250 libraries: half a second of dynamic linking) on a background thread, so the image
+// output after a long render does not wait for it. Short renders (tests, previews) do not load a module they may
+// never use.
+class PreloadImageIo : public ProgressSink {
+ public:
+  explicit PreloadImageIo(ProgressSink* inner) : inner_(inner) {}
+  void update(uint64_t done, uint64_t total, uint64_t rays, double elapsed) override {
+    if (elapsed >= 1 && !started_.exchange(true, std::memory_order_relaxed)) preload_image_io();
+    if (inner_) inner_->update(done, total, rays, elapsed);
+  }
+
+ private:
+  ProgressSink* inner_;
+  std::atomic<bool> started_{false};
+};
+
 
 int l_scene(lua_State* L) {
   push_object(L, std::make_shared<SceneBuilder>());
@@ -385,10 +404,11 @@ int l_render(lua_State* L) {
     s.control = &control;
   }
   ConsoleProgress progress("render");
+  PreloadImageIo progress_and_preload(ctx.quiet ? nullptr : &progress);
   auto img = std::make_shared<RenderedImage>();
   RenderOutput out;
   try {
-    out = render(flat, Camera(*camera, s.width, s.height), s, ctx.quiet ? nullptr : &progress, ctx.cancel);
+    out = render(flat, Camera(*camera, s.width, s.height), s, &progress_and_preload, ctx.cancel);
   } catch (...) {
     progress.finish();
     throw;

@@ -23,5 +23,8 @@ Image read_image(const std::string& path);
 // sRGB transfer function (IEC 61966-2-1) of one linear value clamped to [0,1].
 float linear_to_srgb(float v);
 float srgb_to_linear(float v);
+/// Executables only (image_io_loader.cc): starts loading the image module on a background thread and returns at
+/// once, so that a later read or write need not wait for it. Harmless when it is loaded or loading already.
+void preload_image_io();
 
 }  // namespace torte

@@ -7,6 +7,7 @@
 #include <climits>
 #include <mutex>
 #include <string>
+#include <thread>
 
 #include "core/error.h"
 #include "film/image_module.h"
@@ -57,6 +58,20 @@ const ImageModuleApi& module() {
 }
 
 }  // namespace
+
+void preload_image_io() {
+  static std::once_flag started;
+  // Detached: a process that ends first just drops the load. A failure is left for the use that needs the module
+  // (call_once then tries again and throws there).
+  std::call_once(started, [] {
+    std::thread([] {
+      try {
+        module();
+      } catch (...) {
+      }
+    }).detach();
+  });
+}
 
 void write_image(const Image& image, const std::string& path, const WriteOptions& options) {
   module().write_image(image, path, options);
