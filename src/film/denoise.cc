@@ -143,25 +143,24 @@ std::vector<float> estimate_variance(const Guide& g, const std::vector<Rgb>& lig
   return out;
 }
 
-// The luminance the edge-stopping weights compare: the median of the pixel and its feature-matched 3x3
-// neighbours. A firefly (one rare bright sample) is then compared as what its neighbours are, so its energy is
-// spread over them instead of kept in place; a highlight or shadow wider than a pixel or so survives a median.
+// The luminance the edge-stopping weights compare: the median of the pixel and its feature-matched 4-neighbours.
+// A firefly (one rare bright sample) is then compared as what its neighbours are, so its energy is spread over
+// them instead of kept in place; a highlight's corner, or a line one pixel wide, has two of its four neighbours
+// at its level and keeps its value (a 3x3 median would round a small highlight's corners off).
 std::vector<float> median_guide(const Guide& g, const std::vector<Rgb>& light) {
   const int w = g.w, h = g.h;
   std::vector<float> out(light.size());
   parallel_for(0, h, [&](int y) {
-    float v[9];
     for (int x = 0; x < w; ++x) {
       const size_t i = size_t(y) * size_t(w) + size_t(x);
-      int n = 0;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int qx = x + dx, qy = y + dy;
-          if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-          const size_t j = size_t(qy) * size_t(w) + size_t(qx);
-          if (j != i && feature_weight(g, i, j, std::sqrt(float(dx * dx + dy * dy))) <= 1e-3f) continue;
-          v[n++] = luminance(light[j]);
-        }
+      float v[5] = {luminance(light[i])};
+      int n = 1;
+      const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+      for (int k = 0; k < 4; ++k) {
+        if (nx[k] < 0 || ny[k] < 0 || nx[k] >= w || ny[k] >= h) continue;
+        const size_t j = size_t(ny[k]) * size_t(w) + size_t(nx[k]);
+        if (feature_weight(g, i, j, 1) > 1e-3f) v[n++] = luminance(light[j]);
+      }
       std::nth_element(v, v + n / 2, v + n);
       out[i] = v[n / 2];
     }
