@@ -27,6 +27,8 @@ float luminance(Rgb c) { return c.luminance(); }
 
 // Albedo below this is treated as 1 when demodulating: dividing by it would amplify noise without bound.
 constexpr float kMinAlbedo = 1e-3f;
+// The noise estimate takes the median residual over a (2 kMadRadius + 1)^2 window: wide enough that a highlight
+// or shadow edge is a minority of it.
 constexpr int kMadRadius = 3;
 
 struct Guide {
