@@ -27,6 +27,9 @@ float luminance(Rgb c) { return c.luminance(); }
 
 // Albedo below this is treated as 1 when demodulating: dividing by it would amplify noise without bound.
 constexpr float kMinAlbedo = 1e-3f;
+// The noise estimate takes the median residual over a (2 kMadRadius + 1)^2 window: wide enough that a highlight
+// or shadow edge is a minority of it.
+constexpr int kMadRadius = 3;
 
 struct Guide {
   int w = 0, h = 0;
@@ -87,7 +90,8 @@ float feature_weight(const Guide& g, size_t i, size_t j, float dist) {
   if (g.hit(i) != g.hit(j) || g.emits[i] != g.emits[j]) return 0;
   if (!g.hit(i)) return 1;  // escaped rays: the sky, smooth by construction
   const float nd = std::max(0.0f, dot(g.normal[i], g.normal[j]));
-  const float wn = std::pow(nd, 64.0f);
+  // cos^128: bump-mapped glossy metal reflects a different scene in normals a few degrees apart.
+  const float wn = std::pow(nd, 128.0f);
   const float dz = std::fabs(g.depth[i] - g.depth[j]);
   const float wz = std::exp(-dz / (2 * g.depth_slope[i] * dist + 1e-3f * std::fabs(g.depth[i]) + 1e-6f));
   const Rgb da = g.albedo[i] - g.albedo[j];
@@ -95,38 +99,72 @@ float feature_weight(const Guide& g, size_t i, size_t j, float dist) {
   return wn * wz * wa;
 }
 
-// Per-pixel variance of the demodulated luminance: its spread over the 5x5 neighbours with matching features
-// (the signal varies little there, so the spread is mostly noise), then blurred over 3x3 as SVGF does.
+// Per-pixel variance of the demodulated luminance, robust to structure in the signal: the residual of each pixel
+// against its feature-matched 3x3 neighbours is mostly noise, except where the lighting has an edge (a
+// highlight, a shadow); the median of the residuals over a 7x7 window ignores those few, where a spread over the
+// window would count the edge as noise and let the filter blur it.
 std::vector<float> estimate_variance(const Guide& g, const std::vector<Rgb>& light) {
   const int w = g.w, h = g.h;
-  std::vector<float> raw(light.size()), out(light.size());
+  std::vector<float> res(light.size()), out(light.size());
   parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       const size_t i = size_t(y) * size_t(w) + size_t(x);
-      double sw = 0, s1 = 0, s2 = 0;
-      for (int dy = -2; dy <= 2; ++dy)
-        for (int dx = -2; dx <= 2; ++dx) {
+      double sw = 0, s1 = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
           const int qx = x + dx, qy = y + dy;
-          if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+          if ((dx == 0 && dy == 0) || qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
           const size_t j = size_t(qy) * size_t(w) + size_t(qx);
           const float fw = feature_weight(g, i, j, std::sqrt(float(dx * dx + dy * dy)));
-          if (fw <= 0) continue;
-          const double l = luminance(light[j]);
-          sw += fw, s1 += fw * l, s2 += fw * l * l;
+          if (fw <= 1e-3f) continue;
+          sw += fw, s1 += fw * luminance(light[j]);
         }
-      raw[i] = sw > 0 ? float(std::max(0.0, s2 / sw - (s1 / sw) * (s1 / sw))) : 0.0f;
+      // A residual against n neighbours' mean has variance (1 + 1/n) sigma^2; 8 neighbours assumed.
+      res[i] = sw > 0 ? float(std::fabs(luminance(light[i]) - s1 / sw)) : -1.0f;
     }
   });
   parallel_for(0, h, [&](int y) {
+    std::vector<float> r;
     for (int x = 0; x < w; ++x) {
-      float s = 0, sw = 0;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int qx = std::clamp(x + dx, 0, w - 1), qy = std::clamp(y + dy, 0, h - 1);
-          const float k = (dx == 0 ? 2.0f : 1.0f) * (dy == 0 ? 2.0f : 1.0f);
-          s += k * raw[size_t(qy) * size_t(w) + size_t(qx)], sw += k;
+      const size_t i = size_t(y) * size_t(w) + size_t(x);
+      r.clear();
+      for (int dy = -kMadRadius; dy <= kMadRadius; ++dy)
+        for (int dx = -kMadRadius; dx <= kMadRadius; ++dx) {
+          const int qx = x + dx, qy = y + dy;
+          if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+          const size_t j = size_t(qy) * size_t(w) + size_t(qx);
+          if (res[j] < 0 || feature_weight(g, i, j, std::sqrt(float(dx * dx + dy * dy))) <= 1e-3f) continue;
+          r.push_back(res[j]);
         }
-      out[size_t(y) * size_t(w) + size_t(x)] = s / sw;
+      if (r.empty()) { out[i] = 0; continue; }
+      std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
+      const float sigma = 1.4826f * r[r.size() / 2] / std::sqrt(1 + 1 / 8.0f);
+      out[i] = sigma * sigma;
+    }
+  });
+  return out;
+}
+
+// The luminance the edge-stopping weights compare: the median of the pixel and its feature-matched 4-neighbours.
+// A firefly (one rare bright sample) is then compared as what its neighbours are, so its energy is spread over
+// them instead of kept in place; a highlight's corner, or a line one pixel wide, has two of its four neighbours
+// at its level and keeps its value (a 3x3 median would round a small highlight's corners off).
+std::vector<float> median_guide(const Guide& g, const std::vector<Rgb>& light) {
+  const int w = g.w, h = g.h;
+  std::vector<float> out(light.size());
+  parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * size_t(w) + size_t(x);
+      float v[5] = {luminance(light[i])};
+      int n = 1;
+      const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+      for (int k = 0; k < 4; ++k) {
+        if (nx[k] < 0 || ny[k] < 0 || nx[k] >= w || ny[k] >= h) continue;
+        const size_t j = size_t(ny[k]) * size_t(w) + size_t(nx[k]);
+        if (feature_weight(g, i, j, 1) > 1e-3f) v[n++] = luminance(light[j]);
+      }
+      std::nth_element(v, v + n / 2, v + n);
+      out[i] = v[n / 2];
     }
   });
   return out;
@@ -155,13 +193,14 @@ Image denoise(const Image& image, const DenoiseOptions& options) {
   std::vector<float> var = estimate_variance(g, light), next_var(count);
 
   constexpr float kKernel[5] = {1 / 16.0f, 1 / 4.0f, 3 / 8.0f, 1 / 4.0f, 1 / 16.0f};
-  const float sigma_l = 4 * options.strength;
+  const float sigma_l = 2 * options.strength;
   for (int it = 0; it < options.iterations; ++it) {
     const int step = 1 << it;
+    const std::vector<float> guide = median_guide(g, light);
     parallel_for(0, h, [&](int y) {
       for (int x = 0; x < w; ++x) {
         const size_t i = size_t(y) * size_t(w) + size_t(x);
-        const float li = luminance(light[i]);
+        const float li = guide[i];
         const float tol = sigma_l * std::sqrt(var[i]) + 1e-6f;
         Rgb sum;
         float sw = 0, svar = 0;
@@ -174,7 +213,7 @@ Image denoise(const Image& image, const DenoiseOptions& options) {
             float wt = kKernel[kx] * kKernel[ky];
             if (j != i) {
               wt *= feature_weight(g, i, j, std::sqrt(float(dx * dx + dy * dy)));
-              wt *= std::exp(-std::fabs(li - luminance(light[j])) / tol);
+              wt *= std::exp(-std::fabs(li - guide[j]) / tol);
             }
             if (wt <= 0) continue;
             sum += light[j] * wt;

@@ -1,10 +1,12 @@
 // A feature-guided denoiser for renders with albedo, normal and depth layers (render/aov_pass.h).
 //
 // Intel Open Image Denoise, the usual choice, is not packaged for Debian 12, so torte filters by hand: an
-// edge-avoiding à-trous wavelet filter (Dammertz et al. 2010) with the variance-guided luminance weights of
-// SVGF (Schied et al. 2017), on the image divided by its albedo. Texture detail lives in the albedo, so it
-// survives the filtering untouched; what is smoothed is the lighting, and only between pixels whose normals,
-// depths and albedos agree and whose lighting differs by less than its estimated noise.
+// edge-avoiding à-trous wavelet filter (Dammertz et al. 2010) with SVGF-like luminance weights (Schied et al.
+// 2017), on the image divided by its albedo. Texture detail lives in the albedo, so it survives the filtering
+// untouched; what is smoothed is the lighting, and only between pixels whose normals, depths and albedos agree
+// and whose lighting differs by less than its estimated noise. The noise estimate is robust (a median of
+// residuals), so a highlight or a shadow edge is not mistaken for noise, and the lighting compared is a median
+// over the pixel and its 4-neighbours, so a firefly is spread over its neighbours rather than kept.
 #pragma once
 #include "film/image.h"
 
