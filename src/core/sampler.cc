@@ -6,6 +6,8 @@
 // are far less well distributed. The hot path is inline in sampler.h; this file has the reference spelling.
 #include "core/sampler.h"
 
+#include "simd/sampler_batch.h"
+
 namespace torte {
 
 using namespace sampler_detail;
@@ -45,6 +47,25 @@ uint32_t sobol_dim1(uint32_t index) {
 
 uint32_t owen_scramble(uint32_t v, uint32_t seed) {
   return reverse_bits(laine_karras_permutation(reverse_bits(v), seed));
+}
+
+void Sampler::get_batch(size_t count, const uint32_t* pixel, const uint32_t* sample, const uint32_t* dimension, float* x,
+                        float* y, uint32_t* scratch) const {
+  if (primary_) {  // Metropolis chains: their own numbers, one by one
+    for (size_t k = 0; k < count; ++k) {
+      const Vec2f u = primary_->get_2d(sample[k], dimension[k]);
+      x[k] = u.x;
+      if (y) y[k] = u.y;
+    }
+    return;
+  }
+  // The seeds need 64-bit multiplies, which AVX2 lanes lack: scalar, and a small share of the work.
+  uint32_t *shuffle = scratch, *a = scratch + count, *b = scratch + 2 * count;
+  for (size_t k = 0; k < count; ++k) {
+    const Seeds s = derive_seeds(seed_hash_, pixel[k], dimension[k]);
+    shuffle[k] = s.shuffle, a[k] = s.a, b[k] = s.b;
+  }
+  sobol_points_soa(count, sample, {shuffle, a, b}, x, y);
 }
 
 Vec2f Sampler::get_2d_reference(uint32_t pixel, uint32_t sample_index, uint32_t dimension) const {

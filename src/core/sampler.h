@@ -9,6 +9,7 @@
 // keeps the plain composition (get_2d_reference) that tests hold the inline arithmetic to, bit for bit.
 #pragma once
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 
 #include "core/primary_samples.h"
@@ -129,6 +130,10 @@ class Sampler {
     const uint32_t r = laine_karras_permutation(reverse_bits(sample_index), s.shuffle);
     return to_unit_float(reverse_bits(laine_karras_permutation(reverse_bits(r), s.a)));
   }
+  /// Many points at once: x[k] (and y[k] unless y is null) = get_2d(pixel[k], sample[k], dimension[k]), bit for bit,
+  /// the scrambling done in vector lanes (simd/sampler_batch.h). `scratch` holds at least 3 * count words.
+  void get_batch(size_t count, const uint32_t* pixel, const uint32_t* sample, const uint32_t* dimension, float* x,
+                 float* y, uint32_t* scratch) const;
   /// From now on (until called with null) get_2d(pixel, s, d) reads coordinates d of Markov chain s of
   /// `primary` instead (Metropolis light transport, render/integrator_mlt.h); the pixel is then ignored.
   void use_primary_samples(const PrimarySamples* primary) { primary_ = primary; }

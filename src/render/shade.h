@@ -8,6 +8,7 @@
 // Between 3 and 4 an integrator may look at the queue (OnShaded, e.g. IGI gathers VPL light at the hits).
 // Templated on the material type, so BSDF calls inline and no hit pays a per-hit dispatch.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <span>
 #include <type_traits>
@@ -65,15 +66,17 @@ struct LightCandidate {
   bool delta;      // point-like light: no MIS
 };
 
-// The sampler's numbers one scattering event uses. A kernel draws them for its whole queue in one loop of
-// independent hashes before it shades (draw_light_numbers, draw_scatter_numbers): the out-of-order core then
-// overlaps many hits' work, where drawing them inside the long shading loop left their latency exposed.
+// The sampler's numbers the scattering events of a queue use, by queue entry. A kernel draws them for the whole
+// queue before it shades (draw_light_numbers, draw_scatter_numbers), in vector lanes (Sampler::get_batch): one
+// at a time inside the shading loop they were its largest cost after tracing.
 struct ShadeNumbers {
-  float light_select;
-  Vec2f light_point;
-  Vec2f bsdf;
-  float lobe;
-  float roulette;
+  std::vector<float> light_select, light_x, light_y, bsdf_x, bsdf_y, lobe, roulette;
+  std::vector<uint32_t> pixel, sample, dim, scratch;  // the requests, and the batch's scratch
+  void resize(size_t n) {
+    for (auto* v : {&light_select, &light_x, &light_y, &bsdf_x, &bsdf_y, &lobe, &roulette}) v->resize(n);
+    for (auto* v : {&pixel, &sample, &dim}) v->resize(n);
+    scratch.resize(3 * n);
+  }
 };
 
 // Per-type scratch arrays, reused between wavefronts.
@@ -85,7 +88,7 @@ struct ShadeScratch {
   std::vector<LightCandidate> lights;
   std::vector<Rgb> f;
   std::vector<float> pdf;
-  std::vector<ShadeNumbers> u;  // per queue entry: its sampler numbers, drawn before they are used
+  ShadeNumbers u;  // the queue's sampler numbers, drawn before they are used
   /// Ready for a queue of n hits: frames, local directions and numbers sized, BSDFs and light candidates emptied.
   void begin(size_t n) {
     bsdf.clear();
@@ -190,36 +193,42 @@ void eval_candidates(ShadeScratch<Bsdf>& sc) {
   }
 }
 
-// Draws the numbers of BSDF sampling and Russian roulette (ShadeNumbers::bsdf, lobe, roulette) for every queue
-// entry: one tight loop, ahead of the sampling loop that reads them.
-template <MaterialType T, class Bsdf>
-void draw_scatter_numbers(const ShadeContext& ctx, std::span<const uint32_t> queue, ShadeScratch<Bsdf>& sc) {
+// The pixel and sample index of each queue entry's path into u.pixel, u.sample (the requests' common part).
+inline void gather_requests(const ShadeContext& ctx, std::span<const uint32_t> queue, ShadeNumbers& u) {
   const PathState& ps = ctx.paths;
-  const Sampler& sampler = ctx.sampler;
-  const int rr_depth = ctx.rules.rr_depth;
   for (size_t k = 0; k < queue.size(); ++k) {
     const uint32_t i = ctx.rays.path[queue[k]];
-    const uint16_t depth = ps.depth[i];
-    const uint32_t px = ps.pixel[i], si = ps.sample[i];
-    ShadeNumbers& u = sc.u[k];
-    u.bsdf = sampler.get_2d(px, si, bounce_dim(depth, kDimBsdf));
-    // Single-lobe models ignore the lobe sample: do not pay for a sampler dimension they do not read.
-    u.lobe = MaterialTraits<T>::kSingleLobe ? 0.5f : sampler.get_1d(px, si, bounce_dim(depth, kDimBsdfLobe));
-    u.roulette = depth + 1 >= rr_depth ? sampler.get_1d(px, si, bounce_dim(depth, kDimRoulette)) : 0.0f;
+    u.pixel[k] = ps.pixel[i];
+    u.sample[k] = ps.sample[i];
   }
 }
 
-// Draws the numbers of light selection and the light point (ShadeNumbers::light_select, light_point) for every
-// queue entry, as draw_scatter_numbers does.
-inline void draw_light_numbers(const ShadeContext& ctx, std::span<const uint32_t> queue, std::span<ShadeNumbers> u) {
-  const PathState& ps = ctx.paths;
-  for (size_t k = 0; k < queue.size(); ++k) {
-    const uint32_t i = ctx.rays.path[queue[k]];
-    const uint16_t depth = ps.depth[i];
-    const uint32_t px = ps.pixel[i], si = ps.sample[i];
-    u[k].light_select = ctx.sampler.get_1d(px, si, bounce_dim(depth, kDimLightSelect));
-    u[k].light_point = ctx.sampler.get_2d(px, si, bounce_dim(depth, kDimLightPoint));
-  }
+// Draws dimension `d` of each queue entry's current event into x (and y): bounce_dim(depth, d) of its path.
+inline void draw_bounce_dim(const ShadeContext& ctx, std::span<const uint32_t> queue, ShadeNumbers& u, BounceDim d,
+                            float* x, float* y) {
+  for (size_t k = 0; k < queue.size(); ++k) u.dim[k] = bounce_dim(ctx.paths.depth[ctx.rays.path[queue[k]]], d);
+  ctx.sampler.get_batch(queue.size(), u.pixel.data(), u.sample.data(), u.dim.data(), x, y, u.scratch.data());
+}
+
+// Draws the numbers of BSDF sampling and Russian roulette (bsdf_x/y, lobe, roulette) for every queue entry. The
+// roulette number is drawn for all and read only from rules.rr_depth events on.
+template <MaterialType T>
+void draw_scatter_numbers(const ShadeContext& ctx, std::span<const uint32_t> queue, ShadeNumbers& u) {
+  gather_requests(ctx, queue, u);
+  draw_bounce_dim(ctx, queue, u, kDimBsdf, u.bsdf_x.data(), u.bsdf_y.data());
+  // Single-lobe models ignore the lobe sample: do not pay for a sampler dimension they do not read.
+  if constexpr (MaterialTraits<T>::kSingleLobe)
+    std::fill_n(u.lobe.begin(), queue.size(), 0.5f);
+  else
+    draw_bounce_dim(ctx, queue, u, kDimBsdfLobe, u.lobe.data(), nullptr);
+  draw_bounce_dim(ctx, queue, u, kDimRoulette, u.roulette.data(), nullptr);
+}
+
+// Draws the numbers of light selection and the light point (light_select, light_x/y) for every queue entry.
+inline void draw_light_numbers(const ShadeContext& ctx, std::span<const uint32_t> queue, ShadeNumbers& u) {
+  gather_requests(ctx, queue, u);
+  draw_bounce_dim(ctx, queue, u, kDimLightSelect, u.light_select.data(), nullptr);
+  draw_bounce_dim(ctx, queue, u, kDimLightPoint, u.light_x.data(), u.light_y.data());
 }
 
 // Phase 4 of a shading kernel: samples each slot's BSDF (built in sc by phase 1) for its path's next ray and
@@ -227,12 +236,13 @@ inline void draw_light_numbers(const ShadeContext& ctx, std::span<const uint32_t
 template <MaterialType T, class Bsdf>
 void sample_next_rays(const ShadeContext& ctx, std::span<const uint32_t> queue, ShadeScratch<Bsdf>& sc,
                       TransportMode mode) {
-  draw_scatter_numbers<T>(ctx, queue, sc);
+  ShadeNumbers& u = sc.u;
+  draw_scatter_numbers<T>(ctx, queue, u);
   for (size_t k = 0; k < queue.size(); ++k) {
-    const ShadeNumbers& u = sc.u[k];
     BsdfSample bs;
-    if (!sc.bsdf[k].sample(sc.wo_local[k], u.lobe, u.bsdf, &bs) || !(bs.pdf > 0)) continue;  // the path ends
-    continue_path_with(ctx, queue[k], sc.frame[k], sc.wo_local[k], bs, mode, u.roulette);
+    if (!sc.bsdf[k].sample(sc.wo_local[k], u.lobe[k], Vec2f(u.bsdf_x[k], u.bsdf_y[k]), &bs) || !(bs.pdf > 0))
+      continue;  // the path ends
+    continue_path_with(ctx, queue[k], sc.frame[k], sc.wo_local[k], bs, mode, u.roulette[k]);
   }
 }
 
@@ -280,12 +290,12 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
       }
     } else {
       float pmf;
-      const float u = sc.u[k].light_select;
+      const float u = sc.u.light_select[k];
       const int l = ctx.rules.light_sampler == LightSamplerKind::Bvh ? scene.light_bvh.sample(s.p, s.ng, u, &pmf)
                                                                       : scene.light_selection.sample_discrete(u, &pmf);
       if (l >= 0 && pmf > 0)
         detail::add_candidate(ctx, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], pmf,
-                              sc.u[k].light_point);
+                              Vec2f(sc.u.light_x[k], sc.u.light_y[k]));
     }
   }
 
