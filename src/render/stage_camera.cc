@@ -1,5 +1,7 @@
 #include "render/stage_camera.h"
 
+#include <vector>
+
 #include "render/shade.h"
 
 namespace torte {
@@ -18,14 +20,30 @@ void generate_camera_rays(std::span<const SampleRequest> requests, const Camera&
   const bool lens = camera.has_lens();
   const float footprint = camera.footprint_at_origin();
   for (size_t i = 0; i < n; ++i) {
-    const SampleRequest& r = requests[i];
-    const Filter::Sample fs = filter.sample(sampler.get_2d(r.pixel, r.sample, kDimFilter));
-    const Vec2f raster = filter_raster_position(int(r.pixel % uint32_t(width)), int(r.pixel / uint32_t(width)),
+    paths.pixel[i] = requests[i].pixel;
+    paths.sample[i] = requests[i].sample;
+  }
+  // The filter's (and the lens') numbers of the whole batch at once, in vector lanes (Sampler::get_batch).
+  // Scratch of this thread, reused by its later batches.
+  thread_local std::vector<uint32_t> dim, scratch;
+  thread_local std::vector<float> filter_u, filter_v, lens_u, lens_v;
+  dim.assign(n, kDimFilter);
+  scratch.resize(3 * n);
+  filter_u.resize(n), filter_v.resize(n);
+  sampler.get_batch(n, paths.pixel.data(), paths.sample.data(), dim.data(), filter_u.data(), filter_v.data(),
+                    scratch.data());
+  if (lens) {
+    dim.assign(n, kDimLens);
+    lens_u.resize(n), lens_v.resize(n);
+    sampler.get_batch(n, paths.pixel.data(), paths.sample.data(), dim.data(), lens_u.data(), lens_v.data(),
+                      scratch.data());
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t pixel = paths.pixel[i];
+    const Filter::Sample fs = filter.sample(Vec2f(filter_u[i], filter_v[i]));
+    const Vec2f raster = filter_raster_position(int(pixel % uint32_t(width)), int(pixel / uint32_t(width)),
                                                 fs.offset, width, height);
-    const Ray ray = lens ? camera.generate_ray(raster, sampler.get_2d(r.pixel, r.sample, kDimLens))
-                         : camera.generate_ray(raster);
-    paths.pixel[i] = r.pixel;
-    paths.sample[i] = r.sample;
+    const Ray ray = lens ? camera.generate_ray(raster, Vec2f(lens_u[i], lens_v[i])) : camera.generate_ray(raster);
     paths.filter_weight[i] = fs.weight;
     paths.beta[i] = Rgb(1);
     paths.radiance[i] = Rgb(0);
