@@ -269,20 +269,23 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
   const size_t n = queue.size();
   sc.begin(n);
 
-  // Phase 1: BSDFs and light samples.
-  if (!scene.lights.empty() && !ctx.rules.sample_all_lights) detail::draw_light_numbers(ctx, queue, sc.u);
+  // Phase 1: BSDFs, then light samples (two loops: shorter bodies let the core overlap more hits' latency).
   for (size_t k = 0; k < n; ++k) {
     const uint32_t slot = queue[k], i = ctx.rays.path[slot];
     const SurfaceHit& s = ctx.hits.surface[slot];
-    const TextureContext tc = texture_context(s, ps.footprint[i]);
-    sc.bsdf.push_back(
-        Traits::bsdf(scene.materials, scene.textures, ctx.hits.material[slot].index, tc, TransportMode::Radiance));
+    sc.bsdf.push_back(Traits::bsdf(scene.materials, scene.textures, ctx.hits.material[slot].index,
+                                   texture_context(s, ps.footprint[i]), TransportMode::Radiance));
     sc.frame[k] = Frame::from_z(s.ns);
+    sc.wo_local[k] = sc.frame[k].to_local(-ctx.rays.dir(slot));
+  }
+  if (!scene.lights.empty() && !ctx.rules.sample_all_lights) detail::draw_light_numbers(ctx, queue, sc.u);
+  for (size_t k = 0; k < n && !scene.lights.empty(); ++k) {
+    if (!sc.bsdf[k].has_non_specular()) continue;
+    const uint32_t slot = queue[k], i = ctx.rays.path[slot];
+    const SurfaceHit& s = ctx.hits.surface[slot];
     const Vec3f wo = -ctx.rays.dir(slot);
-    sc.wo_local[k] = sc.frame[k].to_local(wo);
-    if (scene.lights.empty() || !sc.bsdf.back().has_non_specular()) continue;
-    const uint32_t px = ps.pixel[i], si = ps.sample[i];
     if (ctx.rules.sample_all_lights) {
+      const uint32_t px = ps.pixel[i], si = ps.sample[i];
       for (size_t l = 0; l < scene.lights.size(); ++l) {
         const Vec2f u = ctx.sampler.get_2d(px, si, kDimAllLightsBase + uint32_t(ps.depth[i]) * 4096 + uint32_t(l));
         detail::add_candidate(ctx, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], 1,
