@@ -85,36 +85,64 @@ constexpr bool kGathersLeaves = !std::is_same_v<Leaves, TriangleLeaves>;
 
 // The leaf (first, count) in the run layout: in place for TriangleLeaves (from `leaf_data`, its data), else
 // gathered into `buffer` (kLeafBufferFloats). Every lane a kernel loads from a run (up to 8 lanes from any
-// position inside it) is written: runs are gathered in order, a group's lanes past the run spilling into the
-// next run before that is written, and masked-out lanes read triangle `first`'s vertices.
+// position inside it) is then a written float: a leaf of one lane group is written run after run, each store's
+// lanes past the run landing in the next run before that is written (lanes past the leaf repeat its last
+// triangle); a longer leaf's partial groups are stored masked and the floats after the last run are zeroed.
 HWY_INLINE const float* LeafBlock(const TriangleLeaves&, const float* leaf_data, uint32_t first, uint32_t,
                                   float*) {
   return leaf_data + 9 * size_t(first);
 }
+// Gathering: per triangle and vertex one 4-float load (x, y, z and a float of the next vertex), and a 4x4
+// transpose per four triangles makes the x, y and z runs (two transposes side by side on 8-lane vectors).
+// Against 12 hardware gathers per leaf (3 of indices, 9 of coordinates) it took 1.6 to 2 times less time on
+// single rays (AVX3, 2026-12-06, bench/RESULTS.md).
+template <class D>
+HWY_INLINE void GatherLeaf(D d, const IndexedLeaves& t, uint32_t first, uint32_t count, float* buffer) {
+  constexpr size_t L = hn::MaxLanes(D());
+  const uint32_t* const idx = t.idx + 3 * size_t(first);
+  const float* const xyz = t.xyz;
+  if constexpr (L == 8 || L == 4) {
+    const hn::CappedTag<float, 4> d4;
+    const hn::Repartition<double, decltype(d)> dd;
+    const uint32_t last = count - 1;
+    // Vertex k of triangle j (clamped to the leaf) as (x, y, z, junk).
+    const auto vertex = [&](uint32_t j, int k) {
+      return hn::LoadU(d4, xyz + 3 * size_t(idx[3 * size_t(j < last ? j : last) + size_t(k)]));
+    };
+    const bool one_group = count <= L;
+    for (uint32_t g = 0; g < count; g += uint32_t(L)) {
+      const auto mask = hn::FirstN(d, count - g);
+      for (int k = 0; k < 3; ++k) {
+        hn::Vec<decltype(d)> r[4];
+        for (uint32_t i = 0; i < 4; ++i) {
+          if constexpr (L == 8) r[i] = hn::Combine(d, vertex(g + i + 4, k), vertex(g + i, k));
+          else r[i] = vertex(g + i, k);
+        }
+        const auto t0 = hn::BitCast(dd, hn::InterleaveLower(d, r[0], r[1]));  // x0 x1 y0 y1 (per 4 lanes)
+        const auto t1 = hn::BitCast(dd, hn::InterleaveUpper(d, r[0], r[1]));  // z0 z1 . .
+        const auto t2 = hn::BitCast(dd, hn::InterleaveLower(d, r[2], r[3]));  // x2 x3 y2 y3
+        const auto t3 = hn::BitCast(dd, hn::InterleaveUpper(d, r[2], r[3]));  // z2 z3 . .
+        const hn::Vec<decltype(d)> run[3] = {hn::BitCast(d, hn::InterleaveLower(dd, t0, t2)),
+                                             hn::BitCast(d, hn::InterleaveUpper(dd, t0, t2)),
+                                             hn::BitCast(d, hn::InterleaveLower(dd, t1, t3))};
+        for (int a = 0; a < 3; ++a) {
+          float* const out = buffer + size_t(3 * k + a) * count + g;
+          if (one_group || g + L <= count) hn::StoreU(run[a], d, out);
+          else hn::BlendedStore(run[a], mask, d, out);
+        }
+      }
+    }
+    if (!one_group) hn::StoreU(hn::Zero(d), d, buffer + 9 * size_t(count));
+  } else {  // one lane (HWY_SCALAR): plain copies
+    for (uint32_t j = 0; j < count; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a) buffer[size_t(3 * k + a) * count + j] = xyz[3 * size_t(idx[3 * j + k]) + a];
+    buffer[9 * size_t(count)] = 0;
+  }
+}
 HWY_INLINE const float* LeafBlock(const IndexedLeaves& t, const float*, uint32_t first, uint32_t count,
                                   float* buffer) {
-  const hn::CappedTag<float, 8> d;
-  const hn::RebindToSigned<decltype(d)> di;
-  const size_t L = hn::Lanes(d);
-  const int32_t* const idx = reinterpret_cast<const int32_t*>(t.idx) + 3 * size_t(first);
-  const auto stride = hn::Set(di, int32_t(t.stride));
-  const auto offsets = [&](size_t g, int k) {
-    const auto lane = hn::Iota(di, int32_t(g));
-    return hn::IfThenElseZero(hn::Lt(lane, hn::Set(di, int32_t(count))),
-                              hn::Add(hn::Mul(lane, hn::Set(di, 3)), hn::Set(di, k)));
-  };
-  if (count <= L) {  // one group (every leaf at the default max_leaf_size on 8-lane targets)
-    for (int k = 0; k < 3; ++k) {
-      const auto v = hn::Mul(hn::GatherIndex(di, idx, offsets(0, k)), stride);
-      for (int a = 0; a < 3; ++a) hn::StoreU(hn::GatherIndex(d, t.pos[a], v), d, buffer + size_t(3 * k + a) * count);
-    }
-    return buffer;
-  }
-  for (int r = 0; r < 9; ++r)
-    for (size_t g = 0; g < count; g += L) {
-      const auto v = hn::Mul(hn::GatherIndex(di, idx, offsets(g, r / 3)), stride);
-      hn::StoreU(hn::GatherIndex(d, t.pos[r % 3], v), d, buffer + size_t(r) * count + g);
-    }
+  GatherLeaf(hn::CappedTag<float, 8>(), t, first, count, buffer);
   return buffer;
 }
 

@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <type_traits>
 
 #include "accel/hit.h"
 #include "accel/wide_bvh.h"
@@ -41,12 +42,51 @@ namespace {
 using traverse_detail::kFarRound;
 using traverse_detail::kMaxWideDepth;
 
+// The FMA slab test of a QuantNode's 8 children with the dequantisation folded in: a plane's distance
+// (origin + q scale - o) / d is fma(q, scale * r, origin * r - o * r - margin), r = 1 / d, so the node's origin and
+// scale become two per-axis constants (scale * r is exact: a power of two) and each plane costs one multiply-add
+// after the byte's conversion, as a WideNode's plane does; dequantising first put one more on every node's
+// critical path. Conservative still: against the FMA test of the dequantised planes (traverse-inl.h,
+// kSlabMargin) this rounds origin * r - org once more and the dequantised plane is the exact one rounded, at
+// most u |r| (2 extent + |o|) + u margin more in all, within the margin's factor of two.
+template <int N>
+HWY_INLINE uint32_t IntersectQuantChildrenFma(const QuantNode& node, const SingleRay& r, float t_max,
+                                              float* t_near) {
+  const hn::CappedTag<float, N> d;
+  const hn::RebindToSigned<decltype(d)> di;
+  const hn::Rebind<uint8_t, decltype(d)> d8;
+  const size_t L = hn::Lanes(d);
+  hn::Vec<decltype(d)> sr[3], near_c[3], far_c[3];
+  for (int a = 0; a < 3; ++a) {
+    const auto inv = hn::Set(d, r.inv_d(a)), origin = hn::Set(d, node.origin[a]);
+    sr[a] = hn::Mul(hn::Set(d, node.scale[a]), inv);
+    near_c[a] = hn::MulSub(origin, inv, hn::Set(d, r.org_near(a)));
+    far_c[a] = hn::MulSub(origin, inv, hn::Set(d, r.org_far(a)));
+  }
+  const uint8_t* const q = &node.q[0][0];
+  const auto plane = [&](uint32_t off, size_t g, int a, const hn::Vec<decltype(d)>& c) {
+    return hn::MulAdd(hn::ConvertTo(d, hn::PromoteTo(di, hn::LoadU(d8, q + off + g))), sr[a], c);
+  };
+  uint32_t bits = 0;
+  for (size_t g = 0; g < size_t(N); g += L) {
+    const auto tx0 = plane(r.near_off(0), g, 0, near_c[0]), ty0 = plane(r.near_off(1), g, 1, near_c[1]);
+    const auto tz0 = plane(r.near_off(2), g, 2, near_c[2]), tx1 = plane(r.far_off(0), g, 0, far_c[0]);
+    const auto ty1 = plane(r.far_off(1), g, 1, far_c[1]), tz1 = plane(r.far_off(2), g, 2, far_c[2]);
+    const auto t0 = hn::Max(hn::Max(tx0, ty0), hn::Max(tz0, hn::Zero(d)));
+    const auto t1 = hn::Min(hn::Min(tx1, ty1), hn::Min(tz1, hn::Set(d, t_max)));
+    hn::StoreU(t0, d, t_near + g);
+    bits |= MaskBits(d, hn::Le(t0, t1)) << g;
+  }
+  return bits & node.occupied;
+}
+
 // Slab test of all N children of `node` (a WideNode or a QuantNode: layout-inl.h). Returns the hit children as
 // bits and their entry distances in t_near.
 // kFma: one fused multiply-add per plane with the margins of the ray's constants (traverse_detail::kSlabMargin);
 // otherwise subtract, then multiply, as SlabRay (rays with a zero or tiny direction component).
 template <int N, bool kFma, class Node>
 HWY_INLINE uint32_t IntersectChildren(const Node& node, const SingleRay& r, float t_max, float* t_near) {
+  if constexpr (kFma && std::is_same_v<Node, QuantNode>) return IntersectQuantChildrenFma<N>(node, r, t_max, t_near);
   const hn::CappedTag<float, N> d;
   const size_t L = hn::Lanes(d);
   const auto ix = hn::Set(d, r.inv_d(0)), iy = hn::Set(d, r.inv_d(1)), iz = hn::Set(d, r.inv_d(2));

@@ -87,10 +87,11 @@ CompactBvh quantize(WideBvh<8>&& wide) {
 }
 
 namespace {
-void point_at_owned_positions(IndexedLeaves& leaves) {
-  const float* const p = leaves.owned_pos.data();
-  leaves.pos[0] = p, leaves.pos[1] = p + 1, leaves.pos[2] = p + 2;
-  leaves.stride = 3;
+// The vertex copy: 3 floats per vertex and the padding (zero).
+void allocate_vertices(IndexedLeaves& leaves, size_t vertices) {
+  leaves.vertices = vertices;
+  leaves.owned_xyz = make_huge_page_vector<float>(3 * vertices + IndexedLeaves::kPadding);
+  leaves.xyz = leaves.owned_xyz.data();
 }
 }  // namespace
 
@@ -100,13 +101,11 @@ IndexedLeaves make_indexed_leaves(size_t triangles, const TriangleMesh& mesh) {
   IndexedLeaves leaves;
   leaves.triangles = triangles;
   leaves.idx = mesh.indices.data();
-  leaves.vertices = mesh.vertex_count();
-  leaves.owned_pos = make_huge_page_vector<float>(3 * leaves.vertices);
-  float* const out = leaves.owned_pos.data();
+  allocate_vertices(leaves, mesh.vertex_count());
+  float* const out = leaves.owned_xyz.data();
   parallel_for_blocks(size_t(0), leaves.vertices, 65536, [&](IndexRange<size_t> r) {
     for (size_t v = r.begin(); v < r.end(); ++v) out[3 * v] = mesh.x[v], out[3 * v + 1] = mesh.y[v], out[3 * v + 2] = mesh.z[v];
   });
-  point_at_owned_positions(leaves);
   return leaves;
 }
 
@@ -132,15 +131,14 @@ IndexedLeaves make_indexed_leaves(std::span<const uint32_t> prim_indices, std::s
       const uint32_t gv = global_vertex(prim_indices[i], k);
       if (remap[gv] == kEmptyChild) remap[gv] = uint32_t(used.size()), used.push_back(gv);
     }
-  leaves.vertices = used.size();
+  allocate_vertices(leaves, used.size());
   leaves.owned_idx = make_huge_page_vector<uint32_t>(3 * n);
-  leaves.owned_pos = make_huge_page_vector<float>(3 * leaves.vertices);
   uint32_t* const idx = leaves.owned_idx.data();
   parallel_for_blocks(size_t(0), n, 65536, [&](IndexRange<size_t> r) {
     for (size_t i = r.begin(); i < r.end(); ++i)
       for (int k = 0; k < 3; ++k) idx[3 * i + size_t(k)] = remap[global_vertex(prim_indices[i], k)];
   });
-  float* const out = leaves.owned_pos.data();
+  float* const out = leaves.owned_xyz.data();
   parallel_for_blocks(size_t(0), used.size(), 65536, [&](IndexRange<size_t> r) {
     for (size_t v = r.begin(); v < r.end(); ++v) {
       const size_t gv = used[v];
@@ -150,7 +148,6 @@ IndexedLeaves make_indexed_leaves(std::span<const uint32_t> prim_indices, std::s
     }
   });
   leaves.idx = leaves.owned_idx.data();
-  point_at_owned_positions(leaves);
   return leaves;
 }
 
@@ -158,20 +155,18 @@ IndexedLeaves make_indexed_leaves(std::span<const uint32_t> prim_indices, std::s
   IndexedLeaves leaves;
   const size_t n = prim_indices.size();
   leaves.triangles = n;
-  leaves.vertices = 3 * n;
+  allocate_vertices(leaves, 3 * n);
   leaves.owned_idx = make_huge_page_vector<uint32_t>(3 * n);
-  leaves.owned_pos = make_huge_page_vector<float>(9 * n);
   for (size_t i = 0; i < n; ++i) {
     if (3 * size_t(prim_indices[i]) + 2 >= vertices.size())
       throw Error("Indexed leaves: primitive " + std::to_string(prim_indices[i]) + " is out of range.");
     for (int k = 0; k < 3; ++k) {
       const Vec3f v = vertices[3 * size_t(prim_indices[i]) + size_t(k)];
       leaves.owned_idx[3 * i + size_t(k)] = uint32_t(3 * i + size_t(k));
-      for (int a = 0; a < 3; ++a) leaves.owned_pos[3 * (3 * i + size_t(k)) + size_t(a)] = v[a];
+      for (int a = 0; a < 3; ++a) leaves.owned_xyz[3 * (3 * i + size_t(k)) + size_t(a)] = v[a];
     }
   }
   leaves.idx = leaves.owned_idx.data();
-  point_at_owned_positions(leaves);
   return leaves;
 }
 

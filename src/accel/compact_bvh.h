@@ -57,26 +57,27 @@ inline float dequantize(const QuantNode& n, int a, uint32_t q) { return n.origin
 /// `wide` with every node quantised (moves prim_indices out of `wide` and frees its nodes).
 CompactBvh quantize(WideBvh<8>&& wide);
 
-// Leaf triangles as vertex indices: leaf-order triangle i has vertices idx[3 i + k] (k = 0, 1, 2), whose axis a
-// is pos[a][v * stride]. The index triples and the vertices are owned here (owned_idx, owned_pos: x, y, z per
-// vertex, stride 3), or the triples are a mesh's (see make_indexed_leaves), which must then outlive these.
-//   Owned: 12 B/tri + 12 B/vertex; borrowing a mesh's triples: 12 B/vertex.
+// Leaf triangles as vertex indices: leaf-order triangle i has vertices idx[3 i + k] (k = 0, 1, 2), vertex v at
+// xyz[3 v, 3 v + 3). The vertices are always a copy owned here (x, y, z per vertex, then kPadding floats, so a
+// kernel may load 4 floats at any vertex); the triples are owned here too (owned_idx) or are a mesh's (see
+// make_indexed_leaves), which must then outlive these.
+//   Owned triples: 12 B/tri + 12 B/vertex; borrowing a mesh's triples: 12 B/vertex.
 struct IndexedLeaves {
+  static constexpr size_t kPadding = 4;
   IndexedLeaves() = default;
   IndexedLeaves(IndexedLeaves&&) = default;  // the buffers move with their pointers
   IndexedLeaves& operator=(IndexedLeaves&&) = default;
   IndexedLeaves(const IndexedLeaves&) = delete;
   const uint32_t* idx = nullptr;
-  const float* pos[3] = {nullptr, nullptr, nullptr};
-  uint32_t stride = 3;
+  const float* xyz = nullptr;
   size_t triangles = 0, vertices = 0;
   HugePageVector<uint32_t> owned_idx;
-  HugePageVector<float> owned_pos;
+  HugePageVector<float> owned_xyz;
   size_t size() const { return triangles; }
-  size_t memory_bytes() const { return owned_idx.size() * sizeof(uint32_t) + owned_pos.size() * sizeof(float); }
+  size_t memory_bytes() const { return owned_idx.size() * sizeof(uint32_t) + owned_xyz.size() * sizeof(float); }
   Vec3f vertex(uint32_t i, int k) const {
-    const size_t v = size_t(idx[3 * size_t(i) + size_t(k)]) * stride;
-    return {pos[0][v], pos[1][v], pos[2][v]};
+    const float* p = xyz + 3 * size_t(idx[3 * size_t(i) + size_t(k)]);
+    return {p[0], p[1], p[2]};
   }
   void triangle(uint32_t i, Vec3f p[3]) const {
     for (int k = 0; k < 3; ++k) p[k] = vertex(i, k);
