@@ -155,9 +155,9 @@ HWY_INLINE uint32_t PacketChildren(const Node& node, const float* nf, const Pack
         nz = hn::Set(d, nf[p.near_off[2] + c]), fx = hn::Set(d, nf[p.far_off[0] + c]);
         fy = hn::Set(d, nf[p.far_off[1] + c]), fz = hn::Set(d, nf[p.far_off[2] + c]);
       } else {  // per lane
-        const auto lx = hn::Set(d, nf[bound_offset<N>(0, false) + c]), ly = hn::Set(d, nf[bound_offset<N>(1, false) + c]);
-        const auto lz = hn::Set(d, nf[bound_offset<N>(2, false) + c]), hx = hn::Set(d, nf[bound_offset<N>(0, true) + c]);
-        const auto hy = hn::Set(d, nf[bound_offset<N>(1, true) + c]), hz = hn::Set(d, nf[bound_offset<N>(2, true) + c]);
+        const auto plane = [&](int a, bool hi) { return hn::Set(d, nf[bound_offset<N>(a, hi) + c]); };
+        const auto lx = plane(0, false), ly = plane(1, false), lz = plane(2, false);
+        const auto hx = plane(0, true), hy = plane(1, true), hz = plane(2, true);
         nx = hn::IfThenElse(neg_x, hx, lx), fx = hn::IfThenElse(neg_x, lx, hx);
         ny = hn::IfThenElse(neg_y, hy, ly), fy = hn::IfThenElse(neg_y, ly, hy);
         nz = hn::IfThenElse(neg_z, hz, lz), fz = hn::IfThenElse(neg_z, lz, hz);

@@ -95,7 +95,8 @@ void check_layouts(const Layouts& l, const Soup& soup, const Rays& r, const Expe
 
 }  // namespace
 
-TEST_CASE("quantised child boxes hold the exact boxes, near and far from the origin, tiny and flat", "[traverse][compact]") {
+TEST_CASE("quantised child boxes hold the exact boxes, near and far from the origin, tiny and flat",
+          "[traverse][compact]") {
   Pcg32 rng(3);
   for (const float offset : {0.0f, 3e4f, -1e6f})
     for (const float size : {1e-6f, 0.05f, 40.0f}) {
@@ -208,7 +209,8 @@ TEST_CASE("rays grazing quantised boxes, and big leaves, lose no hit the brute f
   size_t hits = 0;
   for (const Hit& h : e.hits) hits += h.prim != kNoHit;
   REQUIRE(hits > rays.size() / 8);  // a ray through a vertex hits or misses as the watertight test decides
-  for (const BvhBuildOptions& options : {BvhBuildOptions{}, BvhBuildOptions{.max_leaf_size = 16, .leaf_block_size = 16}}) {
+  const BvhBuildOptions big_leaves{.max_leaf_size = 16, .leaf_block_size = 16};
+  for (const BvhBuildOptions& options : {BvhBuildOptions{}, big_leaves}) {
     const Layouts l = build_layouts(soup, options);
     for_each_target([&](const std::string&, bool) { check_layouts(l, soup, rays, e, rays.size()); });
   }

@@ -104,7 +104,8 @@ IndexedLeaves make_indexed_leaves(size_t triangles, const TriangleMesh& mesh) {
   allocate_vertices(leaves, mesh.vertex_count());
   float* const out = leaves.owned_xyz.data();
   parallel_for_blocks(size_t(0), leaves.vertices, 65536, [&](IndexRange<size_t> r) {
-    for (size_t v = r.begin(); v < r.end(); ++v) out[3 * v] = mesh.x[v], out[3 * v + 1] = mesh.y[v], out[3 * v + 2] = mesh.z[v];
+    for (size_t v = r.begin(); v < r.end(); ++v)
+      out[3 * v] = mesh.x[v], out[3 * v + 1] = mesh.y[v], out[3 * v + 2] = mesh.z[v];
   });
   return leaves;
 }
@@ -142,7 +143,8 @@ IndexedLeaves make_indexed_leaves(std::span<const uint32_t> prim_indices, std::s
   parallel_for_blocks(size_t(0), used.size(), 65536, [&](IndexRange<size_t> r) {
     for (size_t v = r.begin(); v < r.end(); ++v) {
       const size_t gv = used[v];
-      const size_t m = size_t(std::upper_bound(vertex_first.begin(), vertex_first.end(), gv) - vertex_first.begin()) - 1;
+      const auto after = std::upper_bound(vertex_first.begin(), vertex_first.end(), gv);
+      const size_t m = size_t(after - vertex_first.begin()) - 1;
       const Vec3f p = meshes[m].position(uint32_t(gv - vertex_first[m]));
       out[3 * v] = p.x, out[3 * v + 1] = p.y, out[3 * v + 2] = p.z;
     }
