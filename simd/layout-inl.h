@@ -94,8 +94,8 @@ HWY_INLINE const float* LeafBlock(const TriangleLeaves&, const float* leaf_data,
 }
 // Gathering: per triangle and vertex one 4-float load (x, y, z and a float of the next vertex), and a 4x4
 // transpose per four triangles makes the x, y and z runs (two transposes side by side on 8-lane vectors).
-// Against 12 hardware gathers per leaf (3 of indices, 9 of coordinates) it took 1.6 to 2 times less time on
-// single rays (AVX3, 2026-12-06, bench/RESULTS.md).
+// Against 12 hardware gathers per leaf (3 of indices, 9 of coordinates): single rays 1.15 to 1.6 times faster
+// (AVX3, bench/RESULTS.md 2026-12-06).
 template <class D>
 HWY_INLINE void GatherLeaf(D d, const IndexedLeaves& t, uint32_t first, uint32_t count, float* buffer) {
   constexpr size_t L = hn::MaxLanes(D());

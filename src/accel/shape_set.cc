@@ -16,6 +16,7 @@ void ShapeSet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadri
                      ProgressCounter* progress, BvhLayout layout) {
   if (layout == BvhLayout::kAuto) throw Error("internal: ShapeSet::build takes a resolved layout");
   layout_ = layout;
+  tri_leaves_ = {}, ctri_bvh_ = {}, itri_leaves_ = {};  // a rebuild in the other layout keeps none of these
   meshes_ = &meshes;
   quadrics_ = &quadrics;
   // The set's input numbering: mesh after mesh.
