@@ -26,6 +26,11 @@
 // --threads T > 1 everything is wall time, rays are split into chunks of 4096 over a TBB arena of T threads
 // (torte and Embree alike) and both builders are limited to T threads.
 //
+// --compact (width 8): the compact layouts (compact_layouts.h: quantised nodes, indexed leaves, both) traced
+// through the same workloads, timed interleaved with the default layout, one line per layout and workload:
+//   layout=<name> workload=<w> tris=<n> threads=<t> default_mrays=<x> layout_mrays=<y> ratio=<y/x>
+// with the layouts' bytes per triangle (nodes + leaves + prim_indices) on a '#' line per scene.
+//
 // Hit distances must agree (relative 1e-4, and hit vs miss); the fraction of disagreeing rays is printed per
 // workload and the program fails (exit 1, "FAIL" on stderr) when it exceeds 1e-4 for any workload.
 #include <embree3/rtcore.h>
@@ -43,10 +48,12 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "accel/bvh_build.h"
+#include "compact_layouts.h"
 #include "embree_tree.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -76,6 +83,7 @@ struct Options {
   std::vector<std::string> meshes;      // --mesh FILE (repeatable): users' meshes, instead of the named scenes
   int grow = 0;                         // --grow N: subdivide each --mesh N times
   bool scenes_given = false;            // --scenes with --mesh: the named scenes run too, first
+  bool compact = false;                 // --compact: the compact layouts next to the default one (width 8)
 };
 Options g_opt;
 
@@ -270,7 +278,7 @@ bool workload_selected(const char* name) {
 
 template <int N>
 void compare_workload(const char* name, const BenchScene& s, const Workload& w, const TorteAccel<N>& a,
-                      RTCScene scene, Kind kind, bool packets) {
+                      RTCScene scene, Kind kind, bool packets, const CompactAccel* compact) {
   if (!workload_selected(name)) return;
   const size_t n = w.rays.size();
   std::vector<Hit> hits(kind == Kind::Closest ? n : 0), embree_hits_out(kind == Kind::Closest ? n : 0);
@@ -301,11 +309,28 @@ void compare_workload(const char* name, const BenchScene& s, const Workload& w, 
   // Embree variants timed: [0] COHERENT context, [1] INCOHERENT (single rays: only the default, INCOHERENT).
   const bool try_coherent = packets && g_opt.embree_context != "incoherent";
   const bool try_incoherent = !packets || g_opt.embree_context != "coherent";
-  std::vector<double> tt, te[2];
+  std::vector<double> tt, te[2], tl[3];
+  std::vector<Hit> layout_hits(compact && kind == Kind::Closest ? n : 0);
+  std::vector<uint8_t> layout_occ(compact && kind == Kind::Any ? n : 0);
+  Check layout_check[3];
+  auto run_layout = [&](int k) {  // the compact layouts, as run_torte runs the default one
+    if constexpr (N == 8)
+      for_rays(n, [&](size_t b, size_t e) {
+        trace_layout(kCompactLayouts[k], a, *compact, w.rays.soa(b), e - b,
+                     kind == Kind::Closest ? layout_hits.data() + b : nullptr,
+                     kind == Kind::Any ? layout_occ.data() + b : nullptr, packets ? g_opt.packet : 0);
+      });
+  };
   for (int r = 0; r < g_opt.reps; ++r) {
     tt.push_back(time_traversal(run_torte));
     if (try_coherent) te[0].push_back(time_traversal([&] { run_embree(true); }));
     if (try_incoherent) te[1].push_back(time_traversal([&] { run_embree(false); }));
+    for (int k = 0; compact && k < 3; ++k) {
+      tl[k].push_back(time_traversal([&] { run_layout(k); }));
+      if (r == 0)
+        layout_check[k] = kind == Kind::Closest ? check_closest(w.ref, layout_hits.data(), n, kRelTol)
+                                                : check_any(w.ref, layout_occ.data(), n);
+    }
   }
   Check vs_embree, vs_ref;
   size_t embree_hits = 0;
@@ -340,6 +365,18 @@ void compare_workload(const char* name, const BenchScene& s, const Workload& w, 
     std::printf("# %s: embree_mrays with the COHERENT context %.3f, INCOHERENT %.3f (0: not run)\n", name,
                 me_coherent, me_incoherent);
   report_check(name, vs_embree, vs_ref, embree_hits);
+  for (int k = 0; compact && k < 3; ++k) {
+    const double ml = double(n) / median(tl[k]) * 1e-6;
+    std::printf("layout=%s workload=%s tris=%zu threads=%d default_mrays=%.3f layout_mrays=%.3f ratio=%.3f\n",
+                layout_name(kCompactLayouts[k]), name, s.triangles(), g_opt.threads, mt, ml, ml / mt);
+    std::printf("# %s: %s vs reference: %zu of %zu disagree\n", name, layout_name(kCompactLayouts[k]),
+                layout_check[k].mismatches, n);
+    if (layout_check[k].mismatch_fraction() > kMaxMismatchFraction) {
+      std::fprintf(stderr, "embree-compare: FAIL: %s: layout %s disagrees with the reference on %.2e of the rays\n",
+                   name, layout_name(kCompactLayouts[k]), layout_check[k].mismatch_fraction());
+      g_failed = true;
+    }
+  }
 }
 
 template <int N>
@@ -390,11 +427,21 @@ void run_scene(RTCDevice dev, const BenchScene& s) {
                 e.nodes, e.avg_children, e.avg_leaf_size, double(sah_cost(accel.bvh, block4)), own.nodes,
                 own.avg_children, own.avg_leaf_size, double(own_sah), N);
   }
-  compare_workload("primary", s, s.primary, accel, scene, Kind::Closest, true);
-  compare_workload("primary-single", s, s.primary, accel, scene, Kind::Closest, false);
-  compare_workload("shadow", s, s.shadow, accel, scene, Kind::Any, true);
-  compare_workload("shadow-single", s, s.shadow, accel, scene, Kind::Any, false);
-  compare_workload("diffuse", s, s.diffuse, accel, scene, Kind::Closest, false);
+  std::unique_ptr<CompactAccel> compact;
+  if constexpr (N == 8)
+    if (g_opt.compact) {
+      compact = std::make_unique<CompactAccel>(build_compact(accel, mesh));
+      std::printf("# layouts: bytes/triangle (nodes + leaves + prim_indices; mesh excluded):");
+      for (Layout l : {Layout::kDefault, Layout::kQuantNodes, Layout::kIndexedLeaves, Layout::kCompact})
+        std::printf(" %s %.1f", layout_name(l), layout_bytes_per_triangle(l, accel, *compact, tris));
+      std::printf("\n");
+    }
+  const CompactAccel* c = compact.get();
+  compare_workload("primary", s, s.primary, accel, scene, Kind::Closest, true, c);
+  compare_workload("primary-single", s, s.primary, accel, scene, Kind::Closest, false, c);
+  compare_workload("shadow", s, s.shadow, accel, scene, Kind::Any, true, c);
+  compare_workload("shadow-single", s, s.shadow, accel, scene, Kind::Any, false, c);
+  compare_workload("diffuse", s, s.diffuse, accel, scene, Kind::Closest, false, c);
   rtcReleaseScene(scene);
 }
 
@@ -404,7 +451,7 @@ int usage() {
                "[--full] "
                "[--scenes a,b,...] [--mesh FILE.ply|.obj ...] [--grow N] [--packet 8|16] "
                "[--width 4|8] [--embree-context best|coherent|incoherent] [--embree-robust] [--embree-hits full|t] "
-               "[--tree torte|embree]\n"
+               "[--tree torte|embree] [--compact]\n"
                "  --threads T  traversal and build threads (default 1)\n"
                "  --reps R     repetitions per measurement; medians are printed (default 5)\n"
                "  --stat min   print the fastest repetition instead of the median (A/B runs on a loaded machine)\n"
@@ -424,7 +471,8 @@ int usage() {
                "  --embree-hits t  Embree's closest hits keep only t instead of the 20-byte Hit record torte\n"
                "               writes (t, primitive, barycentrics, instance; default full: the same output)\n"
                "  --tree embree  torte's kernels trace a tree from Embree's SAH builder (rtcBuildBVH with its\n"
-               "               triangle builder's settings) in torte's layout: kernels compared on one tree\n",
+               "               triangle builder's settings) in torte's layout: kernels compared on one tree\n"
+               "  --compact    also trace the compact layouts, interleaved: speed ratios, bytes per triangle\n",
                kDefaultBvhWidth);
   return 2;
 }
@@ -442,6 +490,8 @@ int main(int argc, char** argv) {
       set_full_run(true);
     } else if (a == "--embree-robust") {
       g_opt.embree_robust = true;
+    } else if (a == "--compact") {
+      g_opt.compact = true;
     } else if (a == "--embree-hits") {
       const char* v = value();
       if (!v || (std::string(v) != "full" && std::string(v) != "t")) return usage();
@@ -481,7 +531,7 @@ int main(int argc, char** argv) {
     }
   }
   if (g_opt.threads < 1 || g_opt.reps < 1 || (g_opt.packet != 8 && g_opt.packet != 16) ||
-      (g_opt.width != 4 && g_opt.width != 8) ||
+      (g_opt.width != 4 && g_opt.width != 8) || (g_opt.compact && g_opt.width != 8) ||
       (g_opt.embree_context != "best" && g_opt.embree_context != "coherent" && g_opt.embree_context != "incoherent"))
     return usage();
 

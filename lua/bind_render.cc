@@ -45,7 +45,13 @@ class PreloadImageIo : public ProgressSink {
 
 
 int l_scene(lua_State* L) {
-  push_object(L, std::make_shared<SceneBuilder>());
+  auto scene = std::make_shared<SceneBuilder>();
+  if (!lua_isnoneornil(L, 1)) {
+    KwArgs kw(L, 1, "torte.scene");
+    scene->set_accel_options(read_accel_options(kw, {}));
+    kw.finish();
+  }
+  push_object(L, std::move(scene));
   return 1;
 }
 
@@ -258,10 +264,12 @@ void print_scene_summary(const Scene& scene) {
       if (seen.insert(&mesh.triple_array()).second) indices += mesh.triple_array().size() * sizeof(uint32_t);
     }
     std::fprintf(stderr,
-                 "memory per triangle: nodes %.1f B, leaves %.1f B, indices %.1f B (+ %.1f B map), normals %.1f B; "
-                 "peak resident %s\n",
-                 double(m.nodes) / tris, double(m.leaves) / tris, double(indices) / tris, double(m.index_map) / tris,
-                 double(normals) / tris, format_bytes(peak_resident_memory()).c_str());
+                 "memory per triangle (%s layout): nodes %.1f B, leaves %.1f B, indices %.1f B (+ %.1f B map), "
+                 "normals %.1f B; total %.1f B; peak resident %s\n",
+                 bvh_layout_name(scene.accel().layout()), double(m.nodes) / tris, double(m.leaves) / tris,
+                 double(indices) / tris, double(m.index_map) / tris, double(normals) / tris,
+                 double(m.nodes + m.leaves + indices + m.index_map + normals) / tris,
+                 format_bytes(peak_resident_memory()).c_str());
   }
 }
 
@@ -348,6 +356,7 @@ int l_render(lua_State* L) {
   // The per-stage profile (image.stages); --stats collects it for every render and prints it.
   s.stage_stats = kw.boolean("stats", false) || ctx.stats;
   AovRequest aov_request = read_aov_request(kw, s.spp);
+  const AccelOptions accel_options = read_accel_options(kw, scene->accel_options());
   kw.finish();
   aov_request.aovs.insert(aov_request.aovs.end(), ctx.aovs.begin(), ctx.aovs.end());
   aov_request.denoise = aov_request.denoise || ctx.denoise;
@@ -385,7 +394,7 @@ int l_render(lua_State* L) {
                                              std::to_string(s.height) + " image's film");
 
   const auto t0 = std::chrono::steady_clock::now();
-  const SceneCache::Lookup built = cached_scene(L, *scene, "torte.render");
+  const SceneCache::Lookup built = cached_scene(L, *scene, "torte.render", &accel_options);
   const Scene& flat = *built.scene;
   if (const std::string why = black_image_reason(flat); !why.empty()) {
     luaL_where(L, 1);

@@ -21,9 +21,21 @@ double half_area(const Bounds3f& b) {
   return d.x * d.y + d.y * d.z + d.z * d.x;
 }
 
-// Depth, leaves and SAH cost of a wide BVH by one walk over its nodes (child bounds live in the parent).
+// Child c's box: as stored, or dequantised.
 template <int N>
-void tree_statistics(const WideBvh<N>& bvh, SceneStatistics* s) {
+Bounds3f child_bounds(const WideNode<N>& n, int c) {
+  return {{n.lo_x[c], n.lo_y[c], n.lo_z[c]}, {n.hi_x[c], n.hi_y[c], n.hi_z[c]}};
+}
+Bounds3f child_bounds(const QuantNode& n, int c) {
+  return {{dequantize(n, 0, n.q[0][c]), dequantize(n, 1, n.q[1][c]), dequantize(n, 2, n.q[2][c])},
+          {dequantize(n, 0, n.q[3][c]), dequantize(n, 1, n.q[4][c]), dequantize(n, 2, n.q[5][c])}};
+}
+
+// Depth, leaves and SAH cost of a wide BVH (either layout) by one walk over its nodes (child bounds live in the
+// parent).
+template <class Tree>
+void tree_statistics(const Tree& bvh, SceneStatistics* s) {
+  constexpr int N = Tree::kWidth;
   if (bvh.nodes.empty()) return;
   const double root_area = std::max(double(half_area(bvh.bounds)), 1e-30);
   struct Entry {
@@ -36,10 +48,10 @@ void tree_statistics(const WideBvh<N>& bvh, SceneStatistics* s) {
     stack.pop_back();
     s->depth = std::max(s->depth, e.depth);
     s->sah_cost += e.area / root_area;  // visiting the node tests its N children at once
-    const WideNode<N>& n = bvh.nodes[e.node];
+    const auto& n = bvh.nodes[e.node];
     for (int c = 0; c < N; ++c) {
       if (n.child[c] == kEmptyChild) continue;
-      const Bounds3f b{{n.lo_x[c], n.lo_y[c], n.lo_z[c]}, {n.hi_x[c], n.hi_y[c], n.hi_z[c]}};
+      const Bounds3f b = child_bounds(n, c);
       if (is_leaf_child(n.child[c])) {
         ++s->leaves;
         s->sah_cost += half_area(b) / root_area * n.leaf_count[c];
@@ -62,8 +74,14 @@ SceneStatistics scene_statistics(const Scene& scene, double build_seconds, bool 
     s.placed_primitives += scene.prototypes[inst.prototype]->geometry.primitive_count();
   s.lights = scene.lights.size();
   const ShapeSet::TriangleMemory m = scene.accel().root().triangle_memory();
-  s.nodes = m.nodes / sizeof(WideNode<kDefaultBvhWidth>);
-  tree_statistics(scene.accel().root().triangle_bvh(), &s);
+  s.layout = bvh_layout_name(scene.accel().layout());
+  if (scene.accel().root().layout() == BvhLayout::kCompact) {
+    s.nodes = scene.accel().root().compact_bvh().nodes.size();
+    tree_statistics(scene.accel().root().compact_bvh(), &s);
+  } else {
+    s.nodes = scene.accel().root().triangle_bvh().nodes.size();
+    tree_statistics(scene.accel().root().triangle_bvh(), &s);
+  }
   const GeometrySet& root = scene.accel().root();
   s.voxel_grids = root.grid_count();
   for (uint32_t g = 0; g < root.grid_count(); ++g) {
@@ -104,8 +122,9 @@ std::string format_scene_statistics(const SceneStatistics& s) {
                 (unsigned long long)s.primitives, (unsigned long long)s.triangles, (unsigned long long)s.instances,
                 (unsigned long long)s.groups, (unsigned long long)s.placed_primitives, (unsigned long long)s.lights);
   out += buf;
-  std::snprintf(buf, sizeof buf, "  triangle BVH: %llu nodes of width %d, %llu leaves, depth %u, SAH cost %.1f\n",
-                (unsigned long long)s.nodes, kDefaultBvhWidth, (unsigned long long)s.leaves, s.depth, s.sah_cost);
+  std::snprintf(buf, sizeof buf, "  triangle BVH: %llu nodes of width %d, %llu leaves, depth %u, SAH cost %.1f; %s layout\n",
+                (unsigned long long)s.nodes, kDefaultBvhWidth, (unsigned long long)s.leaves, s.depth, s.sah_cost,
+                s.layout);
   out += buf;
   if (s.voxel_grids > 0) {
     std::snprintf(buf, sizeof buf, "  voxel grids: %llu, %llu kd-tree nodes, %llu solid voxels, %.2f bytes per voxel\n",
@@ -148,6 +167,8 @@ int scene_stats(lua_State* L) {
   set_int("groups", s.groups);
   set_int("placed_primitives", s.placed_primitives);
   set_int("lights", s.lights);
+  lua_pushstring(L, s.layout);
+  lua_setfield(L, -2, "layout");
   set_int("nodes", s.nodes);
   set_int("leaves", s.leaves);
   set_int("depth", s.depth);

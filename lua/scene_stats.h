@@ -14,6 +14,7 @@ struct SceneStatistics {
   uint64_t primitives = 0, triangles = 0;    // of the top-level geometry (instances' prototypes not counted)
   uint64_t instances = 0, groups = 0, placed_primitives = 0;  // instancing: what the instances place
   uint64_t lights = 0;
+  const char* layout = "default";            // the triangles' layout: "default" or "compact" (accel_options.h)
   uint64_t nodes = 0;                        // wide nodes of the top-level triangle BVH
   uint64_t leaves = 0;                       // its leaves (triangle groups)
   uint32_t depth = 0;                        // its depth in nodes (a root alone: 1)

@@ -96,10 +96,16 @@ void open_data(lua_State* L, int torte_index);       // torte.data.*: files, zli
 // torte.simd.*, torte.script_dir, torte.quick, under --list-args torte._list_args (lua/bind_run.cc).
 /// The scene flattened and built for rendering, with a progress display on stderr unless `quiet`
 /// (lua/scene_build.cc).
-std::shared_ptr<Scene> build_scene(const SceneBuilder& scene, bool quiet);
-/// `scene` through the run's scene cache (built with build_scene when it changed); a build error becomes
-/// "<caller>: <message>" (torte.render and scene:stats).
-SceneCache::Lookup cached_scene(lua_State* L, const SceneBuilder& scene, const char* caller);
+/// bvh_layout and memory_budget (accel/accel_options.h) read from `kw` over `base`: the keys of torte.scene{...}
+/// and torte.render{...}; a bad value fails naming its key (lua/scene_build.cc).
+AccelOptions read_accel_options(KwArgs& kw, AccelOptions base);
+/// `options`: the triangles' layout options (the scene's own unless torte.render gave others).
+std::shared_ptr<Scene> build_scene(const SceneBuilder& scene, bool quiet, const AccelOptions& options);
+/// `scene` through the run's scene cache (built with build_scene when it or the options changed); a build error
+/// becomes "<caller>: <message>" (torte.render and scene:stats). `options`: as build_scene's (nullptr: the
+/// scene's accel_options()).
+SceneCache::Lookup cached_scene(lua_State* L, const SceneBuilder& scene, const char* caller,
+                                const AccelOptions* options = nullptr);
 void open_run(lua_State* L, int torte_index, const std::string& script_dir, bool quick, bool list_args);
 /// After the prelude: indexing a missing name of torte or of its tables of functions (torte.material, ...) is
 /// an error "torte.material has no 'plastik' (known: ...)" instead of a nil that fails later (lua/bind_run.cc).

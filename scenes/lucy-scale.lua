@@ -6,6 +6,7 @@
 --                               [data=<meshes directory>] [width=800] [height=600] [spp=16] [max_depth=5]
 --                               [integrator=path|direct|lt] [output=out/lucy-scale.exr]
 --                               [save_ply=<directory>] [ply_dir=<directory>]
+--                               [bvh_layout=auto|default|compact] [memory_budget=<size, e.g. 1.5GB>]
 --
 -- Triangles: the hero is subdivided `levels` times (x4 each), the companions max(levels - 2, 0) times.
 --   levels=4 (default): Lucy 99,970 x 256 = 25,592,320 + dragon 100,000 x 16 = 1,600,000
@@ -16,6 +17,8 @@
 -- directory, `mesh` the hero model (relative paths are relative to the current directory).
 -- `save_ply` writes every grown model to <directory>/<model>.ply (mesh:save); `ply_dir` loads them from there
 -- instead of growing them (scripts/bench-lucy-ply.sh measures that path's memory).
+-- `bvh_layout` and `memory_budget` choose the triangles' layout (torte.scene in docs/lua-api.md): with
+-- memory_budget=1.5GB the default layout's estimate exceeds the budget and the compact one is built.
 local torte = require "torte"
 
 -- This script's directory, so the default data path works from any current directory.
@@ -24,7 +27,7 @@ local script_dir = torte.script_dir  -- absolute: the paths below do not depend 
 local opt = torte.options{
   levels = 4, displacement = 0.05, companions = true, mesh = "", data = script_dir .. "/../../shared/data/meshes",
   width = 800, height = 600, spp = 16, max_depth = 5, integrator = "path", output = "out/lucy-scale.exr",
-  seed = 0, save_ply = "", ply_dir = "",
+  seed = 0, save_ply = "", ply_dir = "", bvh_layout = "auto", memory_budget = "",
 }
 if opt.levels < 0 or opt.levels ~= math.floor(opt.levels) then
   error(("argument 'levels' must be a non-negative integer, got %s"):format(opt.levels))
@@ -54,7 +57,8 @@ local function place(path, levels, height, x, z, yaw)
   return mesh, T(x, 0, z) * R(yaw, {0, 1, 0}) * S(s) * to_origin
 end
 
-local scene = torte.scene()
+local scene = torte.scene{bvh_layout = opt.bvh_layout,
+                          memory_budget = opt.memory_budget ~= "" and opt.memory_budget or nil}
 local statue = torte.material.matte{color = {0.75, 0.72, 0.68}}
 local stone = torte.material.matte{color = {0.55, 0.56, 0.6}}
 

@@ -18,6 +18,7 @@
 
 #include "accel/wide_bvh.h"
 #include "geometry/triangle.h"
+#include "layout-inl.h"
 #include "packet-inl.h"
 #include "traverse-inl.h"
 
@@ -25,8 +26,8 @@ HWY_BEFORE_NAMESPACE();
 namespace torte::HWY_NAMESPACE {
 namespace {
 
+using traverse_detail::bound_offset;
 using traverse_detail::kFarRound;
-using traverse_detail::node_floats;
 
 // The interval slab test of one axis k of a same-octant packet (interval_axes bit k set) against planes n (entry)
 // and f (exit), lanes = boxes, for origins in [o_lo, o_hi]: raises t0 to a lower bound of every ray's entry
@@ -45,14 +46,13 @@ HWY_INLINE void IntervalSlab(D d, const Packet<P>& p, int k, float o_lo, float o
   t0 = hn::Max(t0, near_lo), t1 = hn::Min(t1, far_hi);
 }
 
-// Children of `node` that some valid ray of a same-octant packet may hit: IntervalSlab on every interval axis
-// (Reshetov et al. 2005). A child rejected here fails every lane's own test. t_lo (optional) gets each child's
-// lower bound of the entry distance.
+// Children of a node (its planes `nf`: NodePlanes) that some valid ray of a same-octant packet may hit:
+// IntervalSlab on every interval axis (Reshetov et al. 2005). A child rejected here fails every lane's own test.
+// t_lo (optional) gets each child's lower bound of the entry distance.
 template <int N, size_t P>
-HWY_INLINE uint32_t IntervalChildren(const WideNode<N>& node, const Packet<P>& p, float* t_lo = nullptr) {
+HWY_INLINE uint32_t IntervalChildren(const float* nf, const Packet<P>& p, float* t_lo = nullptr) {
   const hn::CappedTag<float, N> d;
   const size_t L = hn::Lanes(d);
-  const float* nf = node_floats(node);
   uint32_t bits = 0;
   for (size_t g = 0; g < size_t(N); g += L) {
     auto t0 = hn::Zero(d), t1 = hn::Set(d, p.t_hi);
@@ -102,9 +102,9 @@ HWY_INLINE void FillLanes(uint32_t* child_lanes, uint32_t lanes) {
   for (size_t g = 0; g < size_t(N); g += hn::Lanes(du)) hn::StoreU(hn::Set(du, lanes), du, child_lanes + g);
 }
 
-// Occupied child slots, and leaf children, as bits.
-template <int N>
-HWY_INLINE uint32_t NonEmptyChildren(const WideNode<N>& node) {
+// Occupied child slots, and leaf children, as bits (of a WideNode<N> or a QuantNode).
+template <int N, class Node>
+HWY_INLINE uint32_t NonEmptyChildren(const Node& node) {
   // A vector compare: the scalar loop over the N children cost ~65 instructions per node visit (callgrind).
   const hn::CappedTag<uint32_t, N> du;
   uint32_t bits = 0;
@@ -112,8 +112,8 @@ HWY_INLINE uint32_t NonEmptyChildren(const WideNode<N>& node) {
     bits |= MaskBits(du, hn::Ne(hn::LoadU(du, node.child + g), hn::Set(du, kEmptyChild))) << g;
   return bits;
 }
-template <int N>
-HWY_INLINE uint32_t LeafChildren(const WideNode<N>& node) {
+template <int N, class Node>
+HWY_INLINE uint32_t LeafChildren(const Node& node) {
   const hn::CappedTag<uint8_t, N> d8;
   uint32_t bits = 0;
   for (size_t g = 0; g < size_t(N); g += hn::Lanes(d8))
@@ -121,18 +121,18 @@ HWY_INLINE uint32_t LeafChildren(const WideNode<N>& node) {
   return bits;
 }
 
-// Slab test of the N children of `node` against the packet's rays in `lanes`. Returns the hit children as bits;
-// child_lanes[c] gets the lanes hitting child c and, with kNear, t_near[c] the smallest entry distance among them.
-template <bool kNear, int N, size_t P>
-HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, uint32_t lanes, uint32_t cand,
-                                   uint32_t* child_lanes, float* t_near) {
+// Slab test of the N children of `node` (its planes `nf`: NodePlanes) against the packet's rays in `lanes`.
+// Returns the hit children as bits; child_lanes[c] gets the lanes hitting child c and, with kNear, t_near[c] the
+// smallest entry distance among them.
+template <bool kNear, int N, size_t P, class Node>
+HWY_INLINE uint32_t PacketChildren(const Node& node, const float* nf, const Packet<P>& p, uint32_t lanes,
+                                   uint32_t cand, uint32_t* child_lanes, float* t_near) {
   const hn::CappedTag<float, P> d;
   const size_t L = hn::Lanes(d);
-  const float* nf = node_floats(node);
   const auto round = hn::Set(d, kFarRound);
   const auto inf = hn::Set(d, kInfinity);
   // Only the candidate slots, as bits: a loop over all N slots testing each cost ~16 instructions per ray.
-  const uint32_t todo = cand & NonEmptyChildren(node);
+  const uint32_t todo = cand & NonEmptyChildren<N>(node);
   for (uint32_t b = todo; b != 0; b &= b - 1) {
     child_lanes[__builtin_ctz(b)] = 0;
     if constexpr (kNear) t_near[__builtin_ctz(b)] = kInfinity;
@@ -155,8 +155,9 @@ HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, 
         nz = hn::Set(d, nf[p.near_off[2] + c]), fx = hn::Set(d, nf[p.far_off[0] + c]);
         fy = hn::Set(d, nf[p.far_off[1] + c]), fz = hn::Set(d, nf[p.far_off[2] + c]);
       } else {  // per lane
-        const auto lx = hn::Set(d, node.lo_x[c]), ly = hn::Set(d, node.lo_y[c]), lz = hn::Set(d, node.lo_z[c]);
-        const auto hx = hn::Set(d, node.hi_x[c]), hy = hn::Set(d, node.hi_y[c]), hz = hn::Set(d, node.hi_z[c]);
+        const auto plane = [&](int a, bool hi) { return hn::Set(d, nf[bound_offset<N>(a, hi) + c]); };
+        const auto lx = plane(0, false), ly = plane(1, false), lz = plane(2, false);
+        const auto hx = plane(0, true), hy = plane(1, true), hz = plane(2, true);
         nx = hn::IfThenElse(neg_x, hx, lx), fx = hn::IfThenElse(neg_x, lx, hx);
         ny = hn::IfThenElse(neg_y, hy, ly), fy = hn::IfThenElse(neg_y, ly, hy);
         nz = hn::IfThenElse(neg_z, hz, lz), fz = hn::IfThenElse(neg_z, lz, hz);
@@ -185,12 +186,13 @@ HWY_INLINE uint32_t PacketChildren(const WideNode<N>& node, const Packet<P>& p, 
   return hit_children;
 }
 
-// Lanes whose edge functions hit exactly 0 against triangle i: decided by the scalar test (in double).
+// Lanes whose edge functions hit exactly 0 against triangle i: decided by the scalar test (in double). `block`:
+// the leaf (first, count) in the run layout.
 template <bool kAny, size_t P, class D>
-HWY_NOINLINE void RetestZeroLanes(D d, hn::Mask<D> zero, size_t g, const TriangleLeaves& tris, uint32_t first,
+HWY_NOINLINE void RetestZeroLanes(D d, hn::Mask<D> zero, size_t g, const float* block, uint32_t first,
                                   uint32_t count, uint32_t i, Packet<P>& p) {
-  const Vec3f p0 = tris.vertex(first, count, i, 0), p1 = tris.vertex(first, count, i, 1),
-              p2 = tris.vertex(first, count, i, 2);
+  const Vec3f p0 = BlockVertex(block, count, i - first, 0), p1 = BlockVertex(block, count, i - first, 1),
+              p2 = BlockVertex(block, count, i - first, 2);
   for (uint32_t bits = MaskBits(d, zero); bits != 0; bits &= bits - 1) {
     const size_t lane = g + size_t(__builtin_ctz(bits));
     TriangleHit th;
@@ -214,18 +216,17 @@ HWY_INLINE V PermutedCoord(D d, const Packet<P>& p, int k, size_t g, float x, fl
   return hn::IfThenElse(is0, hn::Set(d, x), hn::IfThenElse(is1, hn::Set(d, y), hn::Set(d, z)));
 }
 
-// Tests leaf triangle i (leaf-order index; at = i - first) of the leaf (first, count) against the packet's lanes
-// (lanes = rays). `run`: when the packet has one axis permutation, the leaf's runs per vertex and permuted axis.
-// Closest hit: lanes keep the closest hit (t_max shrinks). Any hit: hit lanes are retired (t_max = -inf).
-// Returns false when no lane can have been hit.
+// Tests leaf triangle i (leaf-order index; at = i - first) of the leaf (first, count), in the run layout at
+// `base`, against the packet's lanes (lanes = rays). `run`: when the packet has one axis permutation, the leaf's
+// runs per vertex and permuted axis. Closest hit: lanes keep the closest hit (t_max shrinks). Any hit: hit lanes
+// are retired (t_max = -inf). Returns false when no lane can have been hit.
 template <bool kAny, size_t P>
-HWY_INLINE bool PacketTriangle(const TriangleLeaves& tris, uint32_t first, uint32_t count, uint32_t at,
+HWY_INLINE bool PacketTriangle(const float* base, uint32_t first, uint32_t count, uint32_t at,
                                const float* const (&run)[3][3], uint32_t lanes, Packet<P>& p) {
   const hn::CappedTag<float, P> d;
   const hn::RebindToUnsigned<decltype(d)> du;
   const size_t L = hn::Lanes(d);
   const auto zero = hn::Zero(d);
-  const float* const base = tris.data.data() + 9 * size_t(first);
   const uint32_t i = first + at;
   bool found = false;
   for (size_t g = 0; g < P; g += L) {
@@ -271,7 +272,7 @@ HWY_INLINE bool PacketTriangle(const TriangleLeaves& tris, uint32_t first, uint3
       hn::Store(hn::IfThenElse(hn::RebindMask(du, r.hit), hn::Set(du, i), prim), du, p.prim + g);
     }
     if (HWY_UNLIKELY(!hn::AllFalse(d, r.zero))) {
-      RetestZeroLanes<kAny>(d, r.zero, g, tris, first, count, i, p);
+      RetestZeroLanes<kAny>(d, r.zero, g, base, first, count, i, p);
       found = true;  // maybe a hit: the caller re-checks the lanes
     }
   }
@@ -281,10 +282,12 @@ HWY_INLINE bool PacketTriangle(const TriangleLeaves& tris, uint32_t first, uint3
 // Tests leaf triangles [first, first + count) against the packet's lanes, one triangle at a time (PacketTriangle).
 // Closest-hit packets of one octant first drop the triangles their interval misses (IntervalTriangles: on camera
 // packets three quarters of a leaf's triangles, which no lane would have hit). Returns false when no lane can have
-// been hit (the any-hit caller then skips its all-occluded check).
-template <bool kAny, size_t P>
-HWY_INLINE bool PacketLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t count, uint32_t lanes, Packet<P>& p) {
-  const float* const base = tris.data.data() + 9 * size_t(first);
+// been hit (the any-hit caller then skips its all-occluded check). Gathered leaves (LeafBlock) are gathered once
+// into `buffer` (kLeafBufferFloats) for all lanes.
+template <bool kAny, size_t P, class Leaves>
+HWY_INLINE bool PacketLeaf(const Leaves& tris, uint32_t first, uint32_t count, uint32_t lanes, Packet<P>& p,
+                           float* buffer) {
+  const float* const base = LeafBlock(tris, LeafData(tris), first, count, buffer);
   // One permutation for the packet (camera and shadow packets): vertex k's coordinate on permuted axis j is run
   // 3 k + axes[j] of the leaf, broadcast straight from the leaf (staging the nine floats per triangle on the stack
   // cost ~40 instructions per triangle, callgrind).
@@ -296,9 +299,9 @@ HWY_INLINE bool PacketLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t 
   if (!kAny && p.same_octant) {
     for (uint32_t g = 0; g < count; g += 8)
       for (uint32_t bits = IntervalTriangles(base, count, g, p); bits != 0; bits &= bits - 1)
-        found |= PacketTriangle<kAny>(tris, first, count, g + uint32_t(__builtin_ctz(bits)), run, lanes, p);
+        found |= PacketTriangle<kAny>(base, first, count, g + uint32_t(__builtin_ctz(bits)), run, lanes, p);
   } else {
-    for (uint32_t at = 0; at < count; ++at) found |= PacketTriangle<kAny>(tris, first, count, at, run, lanes, p);
+    for (uint32_t at = 0; at < count; ++at) found |= PacketTriangle<kAny>(base, first, count, at, run, lanes, p);
   }
   return found;
 }

@@ -1,5 +1,6 @@
 // Single-ray traversal of WideBvh<N> + TriangleLeaves (see traverse.h for the semantics): the dispatch entry
-// points. The kernel itself is in traverse_single-inl.h, shared with the packet kernels' single-ray fallback.
+// points. The kernel itself is in traverse_single-inl.h, shared with the packet kernels' single-ray fallback and
+// with traverse_compact.cc.
 
 // No contraction into FMA anywhere in this file: the edge functions must round like the scalar test's (see
 // geometry/triangle.cc); the exact slab test then also rounds exactly like SlabRay (the FMA slab test fuses
@@ -25,48 +26,6 @@
 
 HWY_BEFORE_NAMESPACE();
 namespace torte::HWY_NAMESPACE {
-namespace {
-
-// Rays a block at a time: the per-ray constants for the whole block with vector ops (single_ray-inl.h), then
-// each ray's traversal.
-template <int N>
-void ClosestSingle(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
-                   Hit* hits) {
-  RayBlock block;
-  float extent[3];
-  traverse_detail::plane_extent(bvh, extent);
-  for (size_t first = 0; first < count; first += kRayBlock) {
-    const size_t n = std::min(kRayBlock, count - first);
-    SetupRays<N>(rays, first, n, extent, block);
-    traverse_detail::prefetch_rays(rays, first + traverse_detail::kRayPrefetchAhead, count);
-    for (size_t j = 0; j < n; ++j) {
-      Hit& hit = hits[first + j];
-      hit = Hit{};
-      if (bvh.nodes.empty() || ((block.valid >> j) & 1) == 0) continue;
-      TraceRay<N, false>(bvh, tris, SingleRay{&block, j, tris.data.data()}, block.t_max[j], &hit);
-    }
-  }
-}
-
-template <int N>
-void AnySingle(const WideBvh<N>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
-               uint8_t* occluded) {
-  RayBlock block;
-  float extent[3];
-  traverse_detail::plane_extent(bvh, extent);
-  for (size_t first = 0; first < count; first += kRayBlock) {
-    const size_t n = std::min(kRayBlock, count - first);
-    SetupRays<N>(rays, first, n, extent, block);
-    traverse_detail::prefetch_rays(rays, first + traverse_detail::kRayPrefetchAhead, count);
-    for (size_t j = 0; j < n; ++j) {
-      const bool traced = !bvh.nodes.empty() && ((block.valid >> j) & 1) != 0;
-      occluded[first + j] =
-          traced && TraceRay<N, true>(bvh, tris, SingleRay{&block, j, tris.data.data()}, block.t_max[j], nullptr);
-    }
-  }
-}
-
-}  // namespace
 
 // Block set-up against one-ray set-up, ray by ray (see traverse.h).
 size_t CountRaySetupMismatches(const RaySoA& rays, size_t count, const float* extent) {
@@ -99,16 +58,16 @@ size_t CountRaySetupMismatches(const RaySoA& rays, size_t count, const float* ex
 
 // Exported per target (HWY_EXPORT needs plain function names).
 void ClosestSingle4(const WideBvh<4>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, Hit* h) {
-  ClosestSingle<4>(b, t, r, n, h);
+  ClosestSingle(b, t, r, n, h);
 }
 void ClosestSingle8(const WideBvh<8>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, Hit* h) {
-  ClosestSingle<8>(b, t, r, n, h);
+  ClosestSingle(b, t, r, n, h);
 }
 void AnySingle4(const WideBvh<4>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, uint8_t* o) {
-  AnySingle<4>(b, t, r, n, o);
+  AnySingle(b, t, r, n, o);
 }
 void AnySingle8(const WideBvh<8>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, uint8_t* o) {
-  AnySingle<8>(b, t, r, n, o);
+  AnySingle(b, t, r, n, o);
 }
 int64_t TraversalTarget() { return HWY_TARGET; }
 

@@ -24,37 +24,77 @@
 
 #include <hwy/highway.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <type_traits>
 
 #include "accel/hit.h"
 #include "accel/wide_bvh.h"
 #include "geometry/triangle.h"
 #include "traverse-inl.h"
+#include "layout-inl.h"
 #include "single_ray-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace torte::HWY_NAMESPACE {
 namespace {
 
-using traverse_detail::bound_offset;
 using traverse_detail::kFarRound;
 using traverse_detail::kMaxWideDepth;
-using traverse_detail::node_floats;
 
-// Slab test of all N children of `node`. Returns the hit children as bits and their entry distances in t_near.
+// The FMA slab test of a QuantNode's 8 children with the dequantisation folded in: a plane's distance
+// (origin + q scale - o) / d is fma(q, scale * r, origin * r - o * r - margin), r = 1 / d, so the node's origin and
+// scale become two per-axis constants (scale * r is exact: a power of two) and each plane costs one multiply-add
+// after the byte's conversion, as a WideNode's plane does; dequantising first put one more on every node's
+// critical path. Conservative still: against the FMA test of the dequantised planes (traverse-inl.h,
+// kSlabMargin) this rounds origin * r - org once more and the dequantised plane is the exact one rounded, at
+// most u |r| (2 extent + |o|) + u margin more in all, within the margin's factor of two.
+template <int N>
+HWY_INLINE uint32_t IntersectQuantChildrenFma(const QuantNode& node, const SingleRay& r, float t_max,
+                                              float* t_near) {
+  const hn::CappedTag<float, N> d;
+  const hn::RebindToSigned<decltype(d)> di;
+  const hn::Rebind<uint8_t, decltype(d)> d8;
+  const size_t L = hn::Lanes(d);
+  hn::Vec<decltype(d)> sr[3], near_c[3], far_c[3];
+  for (int a = 0; a < 3; ++a) {
+    const auto inv = hn::Set(d, r.inv_d(a)), origin = hn::Set(d, node.origin[a]);
+    sr[a] = hn::Mul(hn::Set(d, node.scale[a]), inv);
+    near_c[a] = hn::MulSub(origin, inv, hn::Set(d, r.org_near(a)));
+    far_c[a] = hn::MulSub(origin, inv, hn::Set(d, r.org_far(a)));
+  }
+  const uint8_t* const q = &node.q[0][0];
+  const auto plane = [&](uint32_t off, size_t g, int a, const hn::Vec<decltype(d)>& c) {
+    return hn::MulAdd(hn::ConvertTo(d, hn::PromoteTo(di, hn::LoadU(d8, q + off + g))), sr[a], c);
+  };
+  uint32_t bits = 0;
+  for (size_t g = 0; g < size_t(N); g += L) {
+    const auto tx0 = plane(r.near_off(0), g, 0, near_c[0]), ty0 = plane(r.near_off(1), g, 1, near_c[1]);
+    const auto tz0 = plane(r.near_off(2), g, 2, near_c[2]), tx1 = plane(r.far_off(0), g, 0, far_c[0]);
+    const auto ty1 = plane(r.far_off(1), g, 1, far_c[1]), tz1 = plane(r.far_off(2), g, 2, far_c[2]);
+    const auto t0 = hn::Max(hn::Max(tx0, ty0), hn::Max(tz0, hn::Zero(d)));
+    const auto t1 = hn::Min(hn::Min(tx1, ty1), hn::Min(tz1, hn::Set(d, t_max)));
+    hn::StoreU(t0, d, t_near + g);
+    bits |= MaskBits(d, hn::Le(t0, t1)) << g;
+  }
+  return bits & node.occupied;
+}
+
+// Slab test of all N children of `node` (a WideNode or a QuantNode: layout-inl.h). Returns the hit children as
+// bits and their entry distances in t_near.
 // kFma: one fused multiply-add per plane with the margins of the ray's constants (traverse_detail::kSlabMargin);
 // otherwise subtract, then multiply, as SlabRay (rays with a zero or tiny direction component).
-template <int N, bool kFma>
-HWY_INLINE uint32_t IntersectChildren(const WideNode<N>& node, const SingleRay& r, float t_max, float* t_near) {
+template <int N, bool kFma, class Node>
+HWY_INLINE uint32_t IntersectChildren(const Node& node, const SingleRay& r, float t_max, float* t_near) {
+  if constexpr (kFma && std::is_same_v<Node, QuantNode>) return IntersectQuantChildrenFma<N>(node, r, t_max, t_near);
   const hn::CappedTag<float, N> d;
   const size_t L = hn::Lanes(d);
-  const float* nf = node_floats(node);
   const auto ix = hn::Set(d, r.inv_d(0)), iy = hn::Set(d, r.inv_d(1)), iz = hn::Set(d, r.inv_d(2));
   uint32_t bits = 0;
   for (size_t g = 0; g < size_t(N); g += L) {
-    const auto bx0 = hn::Load(d, nf + r.near_off(0) + g), by0 = hn::Load(d, nf + r.near_off(1) + g);
-    const auto bz0 = hn::Load(d, nf + r.near_off(2) + g), bx1 = hn::Load(d, nf + r.far_off(0) + g);
-    const auto by1 = hn::Load(d, nf + r.far_off(1) + g), bz1 = hn::Load(d, nf + r.far_off(2) + g);
+    const auto bx0 = LoadPlanes(d, node, r.near_off(0), 0, g), by0 = LoadPlanes(d, node, r.near_off(1), 1, g);
+    const auto bz0 = LoadPlanes(d, node, r.near_off(2), 2, g), bx1 = LoadPlanes(d, node, r.far_off(0), 0, g);
+    const auto by1 = LoadPlanes(d, node, r.far_off(1), 1, g), bz1 = LoadPlanes(d, node, r.far_off(2), 2, g);
     hn::Vec<decltype(d)> tx0, ty0, tz0, tx1, ty1, tz1;
     if constexpr (kFma) {
       tx0 = hn::MulSub(bx0, ix, hn::Set(d, r.org_near(0)));
@@ -89,20 +129,21 @@ HWY_INLINE uint32_t IntersectChildren(const WideNode<N>& node, const SingleRay& 
     hn::StoreU(t0, d, t_near + g);
     bits |= MaskBits(d, hn::Le(t0, t1)) << g;
   }
-  return bits;
+  return bits & OccupiedSlots(node);
 }
 
-// Lanes of a leaf group whose edge functions hit exactly 0: the scalar test decides them (in double).
+// Lanes of a leaf group whose edge functions hit exactly 0: the scalar test decides them (in double). `block`:
+// the leaf (first, count) in the run layout.
 template <bool kAny, class D>
-HWY_NOINLINE bool RetestZeroLanesSingle(D d, hn::Mask<D> zero, const TriangleLeaves& tris, uint32_t first,
+HWY_NOINLINE bool RetestZeroLanesSingle(D d, hn::Mask<D> zero, const float* block, uint32_t first,
                                         uint32_t count, size_t at, const SingleRay& r, float* t_max, Hit* hit) {
   const WatertightRay wr = r.watertight();  // built here, off the hot path
   bool found = false;
   for (uint32_t bits = MaskBits(d, zero); bits != 0; bits &= bits - 1) {
     const uint32_t i = uint32_t(at + size_t(__builtin_ctz(bits)));
     TriangleHit th;
-    if (!intersect_triangle(wr, *t_max, tris.vertex(first, count, i, 0), tris.vertex(first, count, i, 1),
-                            tris.vertex(first, count, i, 2), &th))
+    if (!intersect_triangle(wr, *t_max, BlockVertex(block, count, i - first, 0),
+                            BlockVertex(block, count, i - first, 1), BlockVertex(block, count, i - first, 2), &th))
       continue;
     if constexpr (kAny) return true;
     *t_max = th.t;
@@ -115,7 +156,7 @@ HWY_NOINLINE bool RetestZeroLanesSingle(D d, hn::Mask<D> zero, const TriangleLea
 // Leaf triangles [i, i + lanes) of the leaf (first, count), whose runs for the ray's axes start at px, py, pz
 // (vertex 0; vertices 1 and 2 lie v1 and v2 floats further). As IntersectLeaf.
 template <bool kAny, class D>
-HWY_INLINE bool IntersectLeafGroup(D d, const TriangleLeaves& tris, uint32_t first, uint32_t count, uint32_t i,
+HWY_INLINE bool IntersectLeafGroup(D d, const float* block, uint32_t first, uint32_t count, uint32_t i,
                                    const float* px, const float* py, const float* pz, size_t v1, size_t v2,
                                    const SingleRay& r, float* t_max, Hit* hit) {
   // Broadcast here rather than once per leaf: most leaves are one group, and values kept across the loop below
@@ -142,20 +183,20 @@ HWY_INLINE bool IntersectLeafGroup(D d, const TriangleLeaves& tris, uint32_t fir
     found = true;
   }
   if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero)) &&
-      RetestZeroLanesSingle<kAny>(d, lanes.zero, tris, first, count, at, r, t_max, hit))
+      RetestZeroLanesSingle<kAny>(d, lanes.zero, block, first, count, at, r, t_max, hit))
     found = true;
   return found;
 }
 
 // Leaf groups [i, count) of a leaf, after the first, one at a time. As IntersectLeaf.
 template <bool kAny, class D>
-HWY_INLINE bool IntersectLeafGroupsFrom(D d, const TriangleLeaves& tris, uint32_t first, uint32_t count, uint32_t i,
+HWY_INLINE bool IntersectLeafGroupsFrom(D d, const float* block, uint32_t first, uint32_t count, uint32_t i,
                                         const float* px, const float* py, const float* pz, const SingleRay& r,
                                         float* t_max, Hit* hit) {
   const size_t v1 = 3 * size_t(count), v2 = 6 * size_t(count);
   bool found = false;
   for (; i < count; i += uint32_t(hn::Lanes(d))) {
-    if (IntersectLeafGroup<kAny>(d, tris, first, count, i, px, py, pz, v1, v2, r, t_max, hit)) {
+    if (IntersectLeafGroup<kAny>(d, block, first, count, i, px, py, pz, v1, v2, r, t_max, hit)) {
       if constexpr (kAny) return true;
       found = true;
     }
@@ -168,63 +209,64 @@ HWY_INLINE bool IntersectLeafGroupsFrom(D d, const TriangleLeaves& tris, uint32_
 // stack for it at every leaf. Out of line: +3 to +6 % on diffuse rays (bunny to bunny-16m and the dragon;
 // in-process A/B, medians of 7, 2026-11-23).
 template <bool kAny, class D>
-HWY_NOINLINE bool IntersectLeafRest(D d, const TriangleLeaves& tris, uint32_t first, uint32_t count,
+HWY_NOINLINE bool IntersectLeafRest(D d, const float* block, uint32_t first, uint32_t count,
                                     const float* px, const float* py, const float* pz, const SingleRay& r,
                                     float* t_max, Hit* hit) {
-  return IntersectLeafGroupsFrom<kAny>(d, tris, first, count, uint32_t(hn::Lanes(d)), px, py, pz, r, t_max, hit);
+  return IntersectLeafGroupsFrom<kAny>(d, block, first, count, uint32_t(hn::Lanes(d)), px, py, pz, r, t_max, hit);
 }
 
 // Tests leaf triangles [first, first + count) (lanes = triangles). Closest hit: shrinks *t_max and fills *hit
-// with the closest hit closer than *t_max. Any hit: returns at the first hit.
-template <bool kAny>
-HWY_INLINE bool IntersectLeaf(const TriangleLeaves& tris, uint32_t first, uint32_t count, const SingleRay& r,
-                              float* t_max, Hit* hit) {
+// with the closest hit closer than *t_max. Any hit: returns at the first hit. `buffer` (kLeafBufferFloats, for
+// leaves that are gathered first: LeafBlock).
+template <bool kAny, class Leaves>
+HWY_INLINE bool IntersectLeaf(const Leaves& tris, uint32_t first, uint32_t count, const SingleRay& r,
+                              float* t_max, Hit* hit, float* buffer) {
   const hn::CappedTag<float, 8> d;
   const uint32_t L = uint32_t(hn::Lanes(d));
   // Run 3 * vertex + axis of the leaf starts at base + (3 * vertex + axis) * count: the ray's permuted axes pick
   // vertex 0's three runs, and vertices 1 and 2 lie 3 * count and 6 * count floats further (three multiplies per
   // leaf, and the rest fits x86 addressing modes).
-  const float* const base = r.leaf_data + 9 * size_t(first);
+  const float* const base = LeafBlock(tris, r.leaf_data, first, count, buffer);
   const size_t c = count, v1 = 3 * c, v2 = 6 * c;
   const float* const px = base + size_t(r.k(0)) * c;
   const float* const py = base + size_t(r.k(1)) * c;
   const float* const pz = base + size_t(r.k(2)) * c;
   // The first group here: with 8 lanes it is the whole leaf (max_leaf_size 8 by default).
-  bool found = IntersectLeafGroup<kAny>(d, tris, first, count, 0, px, py, pz, v1, v2, r, t_max, hit);
+  bool found = IntersectLeafGroup<kAny>(d, base, first, count, 0, px, py, pz, v1, v2, r, t_max, hit);
   if (kAny && found) return true;
   if (HWY_LIKELY(count <= L)) return found;
   bool more;
   if constexpr (hn::MaxLanes(decltype(d)()) >= 8) {
-    more = IntersectLeafRest<kAny>(d, tris, first, count, px, py, pz, r, t_max, hit);
+    more = IntersectLeafRest<kAny>(d, base, first, count, px, py, pz, r, t_max, hit);
   } else {
-    more = IntersectLeafGroupsFrom<kAny>(d, tris, first, count, L, px, py, pz, r, t_max, hit);
+    more = IntersectLeafGroupsFrom<kAny>(d, base, first, count, L, px, py, pz, r, t_max, hit);
   }
   return found || more;
 }
 
-// Software prefetch of a node (all its cache lines) or of a leaf's triangle block (leaf_data:
-// TriangleLeaves::data). Also used by the packet kernel.
-template <int N>
-HWY_INLINE void Prefetch(const WideBvh<N>& bvh, const float* leaf_data, uint32_t ref, uint32_t count) {
+// Software prefetch of a node (all its cache lines) or of a leaf (PrefetchLeaf; leaf_data: TriangleLeaves::data).
+// Also used by the packet kernel.
+template <class Tree, class Leaves>
+HWY_INLINE void Prefetch(const Tree& bvh, const Leaves& tris, const float* leaf_data, uint32_t ref, uint32_t count) {
+  using Node = typename Tree::Node;
   if (!(ref & kLeafFlag)) {
     // A node is whole, aligned cache lines: no loop.
     const char* p = reinterpret_cast<const char*>(&bvh.nodes[ref]);
-    static_assert(sizeof(WideNode<N>) % 64 == 0 && alignof(WideNode<N>) == 64);
-    for (size_t line = 0; line < sizeof(WideNode<N>); line += 64) __builtin_prefetch(p + line);
+    static_assert(sizeof(Node) % 64 == 0 && alignof(Node) == 64);
+    for (size_t line = 0; line < sizeof(Node); line += 64) __builtin_prefetch(p + line);
     return;
   }
-  const char* p = reinterpret_cast<const char*>(leaf_data + 9 * size_t(ref & ~kLeafFlag));
-  const uintptr_t end = reinterpret_cast<uintptr_t>(p) + 36 * size_t(count);
-  for (uintptr_t a = reinterpret_cast<uintptr_t>(p) & ~uintptr_t(63); a < end; a += 64)
-    __builtin_prefetch(reinterpret_cast<const void*>(a));
+  PrefetchLeaf(tris, leaf_data, ref & ~kLeafFlag, count);
 }
 
 // Closest hit (kAny = false: fills *hit, returns whether anything was hit) or any hit (returns occlusion), in the
 // subtree (ref, count): the whole tree by default (the root is node 0), or a packet entry's subtree when a packet
 // kernel hands its few remaining rays over to single-ray traversal.
-template <int N, bool kAny, bool kFma>
-HWY_INLINE bool TraceRayWith(const WideBvh<N>& bvh, const TriangleLeaves& tris, const SingleRay& r, float t_max,
+template <bool kAny, bool kFma, class Tree, class Leaves>
+HWY_INLINE bool TraceRayWith(const Tree& bvh, const Leaves& tris, const SingleRay& r, float t_max,
                              Hit* hit, uint32_t ref = 0, uint32_t count = 0) {
+  constexpr int N = Tree::kWidth;
+  using Node = typename Tree::Node;
   struct Entry {
     uint32_t ref, count;
     float t_near;
@@ -234,15 +276,17 @@ HWY_INLINE bool TraceRayWith(const WideBvh<N>& bvh, const TriangleLeaves& tris, 
   Entry stack[kMaxWideDepth * (N - 1) + 1];
   int sp = 0;
   bool found = false;
-  const WideNode<N>* const nodes = bvh.nodes.data();  // held here: stores through hit may alias bvh.nodes
+  const Node* const nodes = bvh.nodes.data();  // held here: stores through hit may alias bvh.nodes
+  // Gathered leaves (LeafBlock) only: the default layout's kernel keeps no buffer.
+  alignas(kGathersLeaves<Leaves> ? 64 : 4) float buffer[kGathersLeaves<Leaves> ? kLeafBufferFloats : 1];
   for (;;) {
     if (ref & kLeafFlag) {
-      if (IntersectLeaf<kAny>(tris, ref & ~kLeafFlag, count, r, &t_max, hit)) {
+      if (IntersectLeaf<kAny>(tris, ref & ~kLeafFlag, count, r, &t_max, hit, buffer)) {
         if constexpr (kAny) return true;
         found = true;
       }
     } else {
-      const WideNode<N>& node = nodes[ref];
+      const Node& node = nodes[ref];
       // The child references (the node's last line) are read right after the slab test, which loads only the
       // plane lines: start loading them alongside, or each node costs two memory latencies in a row on trees
       // beyond the caches (+1 % on the bunny, +3.6 % on bunny-4m, +5 to 7 % on bunny-16m; AVX3, 2026-11-23).
@@ -277,7 +321,7 @@ HWY_INLINE bool TraceRayWith(const WideBvh<N>& bvh, const TriangleLeaves& tris, 
             stack[sp++] = {node.child[far], node.leaf_count[far], t_near[far]};
             ref = node.child[near];
             count = node.leaf_count[near];
-            Prefetch<N>(bvh, r.leaf_data, stack[sp - 1].ref, stack[sp - 1].count);
+            Prefetch(bvh, tris, r.leaf_data, stack[sp - 1].ref, stack[sp - 1].count);
             continue;
           }
           bits |= 1u << second;
@@ -298,7 +342,7 @@ HWY_INLINE bool TraceRayWith(const WideBvh<N>& bvh, const TriangleLeaves& tris, 
           count = stack[sp].count;
           // The second nearest child is the likeliest next pop: start loading it (prefetching every pushed child
           // measured no better).
-          Prefetch<N>(bvh, r.leaf_data, stack[sp - 1].ref, stack[sp - 1].count);
+          Prefetch(bvh, tris, r.leaf_data, stack[sp - 1].ref, stack[sp - 1].count);
           continue;
         }
       }
@@ -317,11 +361,50 @@ HWY_INLINE bool TraceRayWith(const WideBvh<N>& bvh, const TriangleLeaves& tris, 
 }
 
 // TraceRayWith with the ray's slab test: the FMA test unless a direction component is zero or tiny.
-template <int N, bool kAny>
-HWY_INLINE bool TraceRay(const WideBvh<N>& bvh, const TriangleLeaves& tris, const SingleRay& r, float t_max,
+template <bool kAny, class Tree, class Leaves>
+HWY_INLINE bool TraceRay(const Tree& bvh, const Leaves& tris, const SingleRay& r, float t_max,
                          Hit* hit, uint32_t ref = 0, uint32_t count = 0) {
-  if (HWY_LIKELY(r.fma_slabs())) return TraceRayWith<N, kAny, true>(bvh, tris, r, t_max, hit, ref, count);
-  return TraceRayWith<N, kAny, false>(bvh, tris, r, t_max, hit, ref, count);
+  if (HWY_LIKELY(r.fma_slabs())) return TraceRayWith<kAny, true>(bvh, tris, r, t_max, hit, ref, count);
+  return TraceRayWith<kAny, false>(bvh, tris, r, t_max, hit, ref, count);
+}
+
+// Rays a block at a time: the per-ray constants for the whole block with vector ops (single_ray-inl.h), then
+// each ray's traversal.
+template <class Tree, class Leaves>
+void ClosestSingle(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, Hit* hits) {
+  constexpr int N = Tree::kWidth;
+  RayBlock block;
+  float extent[3];
+  TreeExtent(bvh, extent);
+  for (size_t first = 0; first < count; first += kRayBlock) {
+    const size_t n = std::min(kRayBlock, count - first);
+    SetupRays<N>(rays, first, n, extent, block);
+    traverse_detail::prefetch_rays(rays, first + traverse_detail::kRayPrefetchAhead, count);
+    for (size_t j = 0; j < n; ++j) {
+      Hit& hit = hits[first + j];
+      hit = Hit{};
+      if (bvh.nodes.empty() || ((block.valid >> j) & 1) == 0) continue;
+      TraceRay<false>(bvh, tris, SingleRay{&block, j, LeafData(tris)}, block.t_max[j], &hit);
+    }
+  }
+}
+
+template <class Tree, class Leaves>
+void AnySingle(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, uint8_t* occluded) {
+  constexpr int N = Tree::kWidth;
+  RayBlock block;
+  float extent[3];
+  TreeExtent(bvh, extent);
+  for (size_t first = 0; first < count; first += kRayBlock) {
+    const size_t n = std::min(kRayBlock, count - first);
+    SetupRays<N>(rays, first, n, extent, block);
+    traverse_detail::prefetch_rays(rays, first + traverse_detail::kRayPrefetchAhead, count);
+    for (size_t j = 0; j < n; ++j) {
+      const bool traced = !bvh.nodes.empty() && ((block.valid >> j) & 1) != 0;
+      occluded[first + j] =
+          traced && TraceRay<true>(bvh, tris, SingleRay{&block, j, LeafData(tris)}, block.t_max[j], nullptr);
+    }
+  }
 }
 
 }  // namespace

@@ -32,9 +32,10 @@ torte.simd = {}
 torte.texture = {}
 torte.voxel = {}
 
----A new, empty scene (a `torte.scene` userdata with the methods `add`, `frame` and `stats`).
+---A new, empty scene (a `torte.scene` userdata with the methods `add`, `frame` and `stats`). The keys choose how its triangles are laid out for tracing: the default layout (8-wide nodes of float boxes, 6.8 bytes per triangle, and leaves that copy each triangle's vertices, 36) or the compact one (nodes whose child boxes are 8-bit offsets on a per-node grid, 3.4, and leaves that index shared vertices: 12 bytes per triangle, none for a scene of one mesh, which lends its own, plus 12 per vertex), slower to trace (`bench/RESULTS.md`, 2026-12-06). The summary after a render and `--stats` name the layout. `torte.render` takes the same keys for one render.
+---@param args torte.scene.args
 ---@return torte.scene
-function torte.scene() end
+function torte.scene(args) end
 
 ---A new, empty group: a `torte.scene` meant to be placed many times by `torte.instance{group = g}`. Groups share their geometry between placements and nest (at most 32 levels, unrolling to at most 2^28 instances and 2^20 lights). Point, spot and directional lights in a group are copied by each placement; emitting shapes and lights at infinity in an instanced group are refused at render time.
 ---@return torte.scene
@@ -58,7 +59,7 @@ function torte_scene:add(obj, ...) end
 ---@return torte.scene
 function torte_scene:frame(transform, function_, g) end
 
----Flattens and builds the scene as `torte.render` would (the build is cached: a render of the unchanged scene reuses it) and returns its statistics: `primitives`, `triangles`, `instances`, `groups`, `placed_primitives`, `lights`, `nodes`, `leaves` and `depth` of the top-level triangle BVH, its `sah_cost` (expected node visits plus triangle tests of a random ray through the scene's bounds), `bytes_per_triangle = {nodes, leaves, indices, index_map, normals}`, `voxel_grids`, `voxel_nodes`, `voxels` (solid) and `voxel_bytes_per_voxel` of the top level's voxel grids, `bounds = {min = {x, y, z}, max = {x, y, z}}`, `geometry_bytes`, `accel_bytes`, `build_seconds`, `reused` (boolean) and `peak_memory` (bytes). Build errors are raised as `scene:stats: <message>`.
+---Flattens and builds the scene as `torte.render` would (the build is cached: a render of the unchanged scene reuses it) and returns its statistics: `primitives`, `triangles`, `instances`, `groups`, `placed_primitives`, `lights`, `layout` (the triangles' layout the build used: `"default"` or `"compact"`, see `torte.scene`), `nodes`, `leaves` and `depth` of the top-level triangle BVH, its `sah_cost` (expected node visits plus triangle tests of a random ray through the scene's bounds), `bytes_per_triangle = {nodes, leaves, indices, index_map, normals}`, `voxel_grids`, `voxel_nodes`, `voxels` (solid) and `voxel_bytes_per_voxel` of the top level's voxel grids, `bounds = {min = {x, y, z}, max = {x, y, z}}`, `geometry_bytes`, `accel_bytes`, `build_seconds`, `reused` (boolean) and `peak_memory` (bytes). Build errors are raised as `scene:stats: <message>`.
 ---@return table
 function torte_scene:stats() end
 
@@ -634,6 +635,10 @@ function torte.sandboxed() end
 ---@return number
 function torte.clock() end
 
+---@class torte.scene.args
+---@field bvh_layout? string the triangles' layout; `"auto"`: compact when the process's resident memory plus 44 bytes per triangle of the scene would exceed `memory_budget` (default "auto")
+---@field memory_budget? any what `"auto"` compares with (default the process's memory limit (`--max-memory`))
+
 ---@class torte.instance.args
 ---@field group torte.scene what is placed
 ---@field transform? torte.transform group space to the space of the scene it is added to (default identity)
@@ -667,6 +672,8 @@ function torte.clock() end
 ---@field aovs? string[] extra image layers (written as layers of an EXR) (default none)
 ---@field denoise? boolean denoise the image, guided by albedo, normal, depth and emission layers it adds (the input stays as layer `"noisy"`) (default false)
 ---@field aov_samples? integer camera samples per pixel of the AOV pass (default min(spp, 16))
+---@field bvh_layout? string the triangles' layout for this render (a change rebuilds the scene) (default the scene's (`torte.scene`))
+---@field memory_budget? any what `bvh_layout = "auto"` compares with, for this render (default the scene's (`torte.scene`))
 
 ---@class image.write.args
 ---@field exposure? number display files: pixels are scaled by 2^exposure (default 0)

@@ -31,13 +31,19 @@ uint32_t tree_depth(const Bvh2& bvh) {
 
 void Aggregate::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
                       const std::vector<VoxelGridAccel>& grids, std::vector<std::unique_ptr<Prototype>>& prototypes,
-                      const std::vector<Instance>& instances, ProgressCounter* progress) {
+                      const std::vector<Instance>& instances, ProgressCounter* progress,
+                      const AccelOptions& options) {
   prototypes_ = &prototypes;
   instances_ = &instances;
-  root_.build(meshes, quadrics, grids, 0, progress);
+  uint64_t triangles = 0;
+  for (const TriangleMesh& m : meshes) triangles += m.triangle_count();
+  for (const auto& proto : prototypes)
+    for (const TriangleMesh& m : proto->meshes) triangles += m.triangle_count();
+  layout_ = resolve_layout(options, triangles);
+  root_.build(meshes, quadrics, grids, 0, progress, layout_);
   uint32_t object_base = uint32_t(meshes.size() + quadrics.size() + grids.size());
   for (const auto& proto : prototypes) {
-    proto->geometry.build(proto->meshes, proto->quadrics, proto->grids, object_base, progress);
+    proto->geometry.build(proto->meshes, proto->quadrics, proto->grids, object_base, progress, layout_);
     object_base += uint32_t(proto->meshes.size() + proto->quadrics.size() + proto->grids.size());
   }
   // The instance level: a BVH2 over the instances' world bounds (the bottom levels are the prototypes').

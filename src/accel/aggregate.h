@@ -41,10 +41,14 @@ class Aggregate {
   /// Builds every level: the root set over (meshes, quadrics, grids) with objects from 0, each prototype's set
   /// with objects numbered on after them, and the instance BVH. The arrays are the caller's and must outlive the
   /// aggregate (the sets point into them; meshes are reordered, see accel/shape_set.h). Throws torte::Error for
-  /// instances of missing prototypes or placed beyond the coordinate range.
+  /// instances of missing prototypes or placed beyond the coordinate range. `options` pick the triangles' layout
+  /// for every set at once (resolve_layout over all the scene's triangles).
   void build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
              const std::vector<VoxelGridAccel>& grids, std::vector<std::unique_ptr<Prototype>>& prototypes,
-             const std::vector<Instance>& instances, ProgressCounter* progress = nullptr);
+             const std::vector<Instance>& instances, ProgressCounter* progress = nullptr,
+             const AccelOptions& options = {});
+  /// The triangles' layout the build chose (kDefault or kCompact).
+  BvhLayout layout() const { return layout_; }
 
   /// The scene's own (non-instanced) geometry.
   const GeometrySet& root() const { return root_; }
@@ -70,7 +74,8 @@ class Aggregate {
   const std::vector<Instance>* instances_ = nullptr;
   std::vector<Bounds3f> instance_bounds_;  // world bounds, for the entry distance of each candidate
   Bvh2 instance_bvh_;
-  uint32_t instance_depth_ = 1;  // stack entries a walk of instance_bvh_ needs: its depth in nodes
+  uint32_t instance_depth_ = 1;
+  BvhLayout layout_ = BvhLayout::kDefault;  // stack entries a walk of instance_bvh_ needs: its depth in nodes
   Bounds3f bounds_;
 };
 

@@ -16,12 +16,13 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
 }
 
 void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
-                        const std::vector<VoxelGridAccel>& grids, uint32_t object_base, ProgressCounter* progress) {
+                        const std::vector<VoxelGridAccel>& grids, uint32_t object_base, ProgressCounter* progress,
+                        BvhLayout layout) {
   if (grids.size() > kMaxVoxelGridsPerSet) throw Error("more than 2048 voxel grids in one scene or group");
   grids_ = &grids;
   object_base_ = object_base;
   static_assert(kProgressPerTriangle == 3, "ShapeSet::build reports 3 units per triangle");
-  shapes_.build(meshes, quadrics, progress);
+  shapes_.build(meshes, quadrics, progress, layout);
   bounds_ = shapes_.bounds();
   for (const VoxelGridAccel& g : grids) bounds_.extend(g.bounds());
 }

@@ -29,8 +29,10 @@ class GeometrySet {
   // voxel/voxel_accel.h for the encoding).
   // `progress` (optional) gets kProgressPerTriangle units per input triangle as the build goes (the caller sets
   // its total): one as the triangle bounds are computed, one from the binary BVH build, one from the steps after.
+  // `layout`: the triangles' (ShapeSet::build).
   void build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
-             const std::vector<VoxelGridAccel>& grids, uint32_t object_base, ProgressCounter* progress = nullptr);
+             const std::vector<VoxelGridAccel>& grids, uint32_t object_base, ProgressCounter* progress = nullptr,
+             BvhLayout layout = BvhLayout::kDefault);
 
   // Triangles in the BVH (all but those with empty bounds, which nothing can hit).
   uint32_t triangle_count() const { return shapes_.triangle_count(); }
@@ -57,6 +59,8 @@ class GeometrySet {
   size_t accel_bytes() const;
   ShapeSet::TriangleMemory triangle_memory() const { return shapes_.triangle_memory(); }
   const WideBvh<kDefaultBvhWidth>& triangle_bvh() const { return shapes_.triangle_bvh(); }
+  const CompactBvh& compact_bvh() const { return shapes_.compact_bvh(); }
+  BvhLayout layout() const { return shapes_.layout(); }
   /// The set's voxel grids (none when it has none).
   const VoxelGridAccel* grid(uint32_t g) const { return &(*grids_)[g]; }
 

@@ -13,7 +13,10 @@
 namespace torte {
 
 void ShapeSet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
-                     ProgressCounter* progress) {
+                     ProgressCounter* progress, BvhLayout layout) {
+  if (layout == BvhLayout::kAuto) throw Error("internal: ShapeSet::build takes a resolved layout");
+  layout_ = layout;
+  tri_leaves_ = {}, ctri_bvh_ = {}, itri_leaves_ = {};  // a rebuild in the other layout keeps none of these
   meshes_ = &meshes;
   quadrics_ = &quadrics;
   // The set's input numbering: mesh after mesh.
@@ -43,14 +46,27 @@ void ShapeSet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadri
   };
   tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(input_triangles, bounds_of, options);
   report(input_triangles - tri_bvh_.prim_indices.size());  // triangles the tree left out (empty bounds)
-  tri_leaves_ = make_triangle_leaves(tri_bvh_, std::span<const TriangleMesh>(meshes), mesh_first);
+  const std::span<const TriangleMesh> mesh_span(meshes);
+  // The compact layout's leaves borrow the triples of a lone owned mesh once they are in leaf order; otherwise
+  // they are made from the tree's order before store_in_leaf_order consumes it.
+  const bool borrow = meshes.size() == 1 && !meshes[0].placed();
+  if (layout == BvhLayout::kDefault) {
+    tri_leaves_ = make_triangle_leaves(tri_bvh_, mesh_span, mesh_first);
+  } else if (!borrow) {
+    itri_leaves_ = make_indexed_leaves(tri_bvh_.prim_indices, mesh_span, mesh_first);
+  }
   report(input_triangles / 2);
   store_in_leaf_order(meshes, mesh_first);
+  if (layout == BvhLayout::kCompact) {
+    if (borrow) itri_leaves_ = make_indexed_leaves(triangle_count_, meshes[0]);
+    ctri_bvh_ = quantize(std::move(tri_bvh_));
+    tri_bvh_ = {};
+  }
   report(input_triangles - input_triangles / 2);
   std::vector<Bounds3f> quadric_bounds(quadrics.size());
   for (size_t q = 0; q < quadrics.size(); ++q) quadric_bounds[q] = world_bounds(quadrics[q]);
   quadric_bvh_.build(quadric_bounds);
-  bounds_ = merge(tri_bvh_.bounds, quadric_bvh_.bounds());
+  bounds_ = merge(layout == BvhLayout::kCompact ? ctri_bvh_.bounds : tri_bvh_.bounds, quadric_bvh_.bounds());
 }
 
 // Rewrites every owned mesh's index triples in the order its triangles take in the leaves, then the set numbers
@@ -157,7 +173,13 @@ bool ShapeSet::occluded_one(const Ray& ray) const {
 }
 
 void ShapeSet::intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const {
-  if (triangle_count() > 0) {
+  if (triangle_count() > 0 && layout_ == BvhLayout::kCompact) {
+    if (kernel != TraceKernel::kSingle) {
+      intersect_closest_packets(ctri_bvh_, itri_leaves_, rays, count, hits, int(kernel));
+    } else {
+      intersect_closest(ctri_bvh_, itri_leaves_, rays, count, hits);
+    }
+  } else if (triangle_count() > 0) {
     if (kernel != TraceKernel::kSingle) {
       intersect_closest_packets(tri_bvh_, tri_leaves_, rays, count, hits, int(kernel));
     } else {
@@ -186,7 +208,13 @@ void ShapeSet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) c
 }
 
 void ShapeSet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const {
-  if (triangle_count() > 0) {
+  if (triangle_count() > 0 && layout_ == BvhLayout::kCompact) {
+    if (kernel != TraceKernel::kSingle) {
+      intersect_any_packets(ctri_bvh_, itri_leaves_, rays, count, blocked, int(kernel));
+    } else {
+      intersect_any(ctri_bvh_, itri_leaves_, rays, count, blocked);
+    }
+  } else if (triangle_count() > 0) {
     if (kernel != TraceKernel::kSingle) {
       intersect_any_packets(tri_bvh_, tri_leaves_, rays, count, blocked, int(kernel));
     } else {
@@ -207,7 +235,8 @@ void ShapeSet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, Trac
 }
 
 size_t ShapeSet::accel_bytes() const {
-  return tri_bvh_.memory_bytes() + tri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
+  return tri_bvh_.memory_bytes() + tri_leaves_.memory_bytes() + ctri_bvh_.memory_bytes() +
+         itri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
          quadric_bvh_.prim_indices().size() * sizeof(uint32_t) +
          tri_ref_.size() * sizeof(uint32_t) + mesh_first_.size() * sizeof(uint32_t);
 }
@@ -223,7 +252,11 @@ SurfaceHit ShapeSet::surface(const Hit& hit, uint32_t object_base) const {
   const TriangleRef ref = triangle_ref(hit.prim);
   const TriangleMesh& mesh = (*meshes_)[ref.mesh];
   Vec3f p[3];
-  tri_leaves_.triangle(hit.prim, p);
+  if (layout_ == BvhLayout::kCompact) {
+    itri_leaves_.triangle(hit.prim, p);
+  } else {
+    tri_leaves_.triangle(hit.prim, p);
+  }
   return triangle_surface(mesh, mesh.triangle(ref.local), p, hit.b1, hit.b2, object_base + ref.mesh);
 }
 

@@ -7,6 +7,9 @@
 // 61.0 B/tri, checked by test_geometry_set.cc. Sets of several meshes, or of placed meshes (a scene's, which
 // share the script's arrays: TriangleMesh::make_placed), add 4 B/tri (each triangle's place in the meshes
 // concatenated) and keep only their world normals.
+// The compact layout (accel/compact_bvh.h, picked by accel_options.h) holds the dragon in 27.4 B/tri: quantised
+// nodes 3.4, leaves that borrow the mesh's leaf-order triples and copy its vertices 6.0, indices 12, normals 6
+// (test_compact_layout.cc); placed or several meshes add their own triples (12 B/tri) to the leaves.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -14,8 +17,10 @@
 #include <span>
 #include <vector>
 
+#include "accel/accel_options.h"
 #include "accel/bvh2.h"
 #include "accel/bvh_build.h"
+#include "accel/compact_bvh.h"
 #include "accel/hit.h"
 #include "accel/wide_bvh.h"
 #include "core/progress_counter.h"
@@ -30,8 +35,11 @@ class ShapeSet {
   /// Builds the BVHs over `meshes` then `quadrics` (local objects 0.. in that order). Reorders each mesh's
   /// triangles into the BVH's leaf order, so triangle numbers in hits are leaf positions and a one-mesh set keeps
   /// no index map; afterwards surface() reads positions from the leaves. `progress` gets 3 units per triangle.
+  /// `layout`: kDefault or kCompact (accel/accel_options.h; kAuto is resolved by the caller).
   void build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
-             ProgressCounter* progress = nullptr);
+             ProgressCounter* progress = nullptr, BvhLayout layout = BvhLayout::kDefault);
+  /// The triangles' layout: kDefault or kCompact.
+  BvhLayout layout() const { return layout_; }
 
   // Triangles in the BVH (all but those with empty bounds, which nothing can hit).
   uint32_t triangle_count() const { return triangle_count_; }
@@ -62,10 +70,13 @@ class ShapeSet {
   struct TriangleMemory {
     size_t nodes = 0, leaves = 0, index_map = 0;  // wide nodes; leaf vertices + leaf starts; tri_ref_ + mesh_first_
   };
-  /// The triangle BVH itself (statistics: depth, leaves, SAH cost).
+  /// The triangle BVH itself (statistics: depth, leaves, SAH cost): the default layout's (empty in the compact
+  /// one), and the compact layout's (empty in the default one).
   const WideBvh<kDefaultBvhWidth>& triangle_bvh() const { return tri_bvh_; }
+  const CompactBvh& compact_bvh() const { return ctri_bvh_; }
   TriangleMemory triangle_memory() const {
-    return {tri_bvh_.nodes.size() * sizeof(tri_bvh_.nodes[0]), tri_leaves_.memory_bytes(),
+    return {tri_bvh_.nodes.size() * sizeof(tri_bvh_.nodes[0]) + ctri_bvh_.nodes.size() * sizeof(QuantNode),
+            tri_leaves_.memory_bytes() + itri_leaves_.memory_bytes(),
             (tri_ref_.size() + mesh_first_.size()) * sizeof(uint32_t)};
   }
 
@@ -90,9 +101,13 @@ class ShapeSet {
     return {m, g - mesh_first_[m]};
   }
   // All triangles of all meshes in one wide BVH (SIMD kernels, simd/traverse.h); the few analytic shapes in a
-  // scalar BVH2 of their own, traced after it with t_max clipped to the triangle hit.
+  // scalar BVH2 of their own, traced after it with t_max clipped to the triangle hit. The default layout fills
+  // tri_bvh_ and tri_leaves_, the compact one ctri_bvh_ and itri_leaves_.
+  BvhLayout layout_ = BvhLayout::kDefault;
   WideBvh<kDefaultBvhWidth> tri_bvh_;
   TriangleLeaves tri_leaves_;
+  CompactBvh ctri_bvh_;
+  IndexedLeaves itri_leaves_;
   Bvh2 quadric_bvh_;
   Bounds3f bounds_;
 };

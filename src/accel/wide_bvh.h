@@ -38,6 +38,8 @@ static_assert(sizeof(WideNode<8>) == 256);
 
 template <int N>
 struct WideBvh {
+  static constexpr int kWidth = N;
+  using Node = WideNode<N>;
   HugePageVector<WideNode<N>> nodes;   // root at index 0 (or empty when there are no primitives); huge pages
   HugePageVector<uint32_t> prim_indices;  // leaf order -> caller's primitive index
   Bounds3f bounds;

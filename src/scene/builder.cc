@@ -405,8 +405,9 @@ SceneBuilder::~SceneBuilder() {
   }
 }
 
-std::shared_ptr<Scene> SceneBuilder::flatten(ProgressCounter* progress) const {
+std::shared_ptr<Scene> SceneBuilder::flatten(ProgressCounter* progress, const AccelOptions* options) const {
   auto scene = std::make_shared<Scene>();
+  scene->accel_options = options ? *options : accel_options_;
   Flattening f(*scene);
 
   for (const ShapeDesc* s : Flattening::ordered(shapes_)) {

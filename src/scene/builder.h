@@ -78,7 +78,15 @@ class SceneBuilder {
   // Throws torte::Error on invalid content (bad meshes, degenerate shapes, coordinates out of range after the
   // transforms, lights of non-finite power, too deep or too wide nesting), and torte::Interrupted when Ctrl-C
   // is pressed (core/interrupt.h). `progress` (optional): see Scene::finalize.
-  std::shared_ptr<Scene> flatten(ProgressCounter* progress = nullptr) const;
+  // `options` (optional) replace accel_options() for this build (torte.render's keys).
+  std::shared_ptr<Scene> flatten(ProgressCounter* progress = nullptr, const AccelOptions* options = nullptr) const;
+
+  /// The triangles' layout options of torte.scene{...} (bvh_layout, memory_budget), which flatten() builds with.
+  void set_accel_options(const AccelOptions& options) {
+    accel_options_ = options;
+    restamp();
+  }
+  const AccelOptions& accel_options() const { return accel_options_; }
 
   /// What flatten() reads, as stamps: this builder's, then those of the groups it places through instances and
   /// voxel cell shapes (depth first, each group once). Every change of a builder gives it a stamp never used
@@ -97,6 +105,7 @@ class SceneBuilder {
   std::vector<ShapeDesc> shapes_;
   std::vector<InstanceDesc> instances_;
   std::vector<Light> lights_;
+  AccelOptions accel_options_;
   uint64_t stamp_ = new_stamp();
   // Whether some builder places this one (an instance or a voxel cell shape points at this object): a builder
   // nothing places cannot be reached from another, which lets reaches() answer without a walk. It belongs to the

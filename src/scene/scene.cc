@@ -28,7 +28,7 @@ void Scene::finalize(ProgressCounter* progress) {
       for (const TriangleMesh& m : proto->meshes) triangles += m.triangle_count();
     progress->total = GeometrySet::kProgressPerTriangle * triangles;
   }
-  accel_.build(meshes, quadrics, grids, prototypes, instances, progress);
+  accel_.build(meshes, quadrics, grids, prototypes, instances, progress, accel_options);
   bounds_ = accel_.bounds();
 
   const Bounds3f b = bounds_;

@@ -76,6 +76,9 @@ class Scene {
   Distribution1D light_selection;  // light selection proportional to power (light paths; NEE with "power")
   LightBvh light_bvh;              // light selection for a shading point (NEE; light/light_bvh.h)
 
+  /// The triangles' layout (accel/accel_options.h: bvh_layout, memory_budget), read by finalize().
+  AccelOptions accel_options;
+
   // Builds the BVHs (top-level geometry, every prototype, the instance level) and the light distribution; call
   // after filling the arrays above.
   // `progress` (optional): its total is set to GeometrySet::kProgressPerTriangle units per triangle of the scene,

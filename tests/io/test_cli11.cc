@@ -354,6 +354,7 @@ assert(scene:stats().reused, "the render left the built scene in the cache")
   CHECK_THAT(r.err, Catch::Contains("scene statistics:\n  primitives 13 (triangles 12)"));
   REQUIRE(std::regex_search(r.err, cli, std::regex("triangle BVH: (\\d+) nodes of width")));
   CHECK(cli[1] == lua[3].str());
+  CHECK_THAT(r.err, Catch::Contains("; default layout\n"));
   CHECK_THAT(r.err, Catch::Contains("bytes per triangle: nodes "));
   CHECK_THAT(r.err, Catch::Contains("(scene unchanged, reused); peak resident "));
   SECTION("without --stats no statistics are printed") {

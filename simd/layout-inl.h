@@ -1,0 +1,177 @@
+// The two tree layouts as the traversal kernels read them (accel/wide_bvh.h, accel/compact_bvh.h): the kernels are
+// templates over the node type and the leaf type, and reach a node's bounds and a leaf's triangles only through
+// the functions here. A WideNode's planes are loaded as they lie; a QuantNode's are dequantised into registers
+// (origin + q * scale, exact in the product so fused and unfused targets agree), after which the same slab tests
+// run. A TriangleLeaves leaf is tested in place; an IndexedLeaves leaf is first gathered into the same run layout
+// (nine runs of `count` floats, wide_bvh.h) in a buffer on the stack, which the same triangle tests then read.
+// Include after traverse-inl.h (per-target part) inside a foreach_target file compiled without FMA contraction.
+
+// Per-target include guard (Highway's pattern).
+#if defined(TORTE_SIMD_LAYOUT_INL_H_TARGET) == defined(HWY_TARGET_TOGGLE)
+#ifdef TORTE_SIMD_LAYOUT_INL_H_TARGET
+#undef TORTE_SIMD_LAYOUT_INL_H_TARGET
+#else
+#define TORTE_SIMD_LAYOUT_INL_H_TARGET
+#endif
+
+#include <hwy/highway.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+
+#include "accel/compact_bvh.h"
+#include "accel/wide_bvh.h"
+#include "traverse-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace torte::HWY_NAMESPACE {
+namespace {
+
+// ---- nodes ----
+
+// Planes of row offset `off` (traverse_detail::bound_offset: row * N) for lanes [g, g + Lanes(d)), on axis a.
+template <class D, int N>
+HWY_INLINE hn::Vec<D> LoadPlanes(D d, const WideNode<N>& node, uint32_t off, int /*a*/, size_t g) {
+  return hn::Load(d, traverse_detail::node_floats(node) + off + g);
+}
+template <class D>
+HWY_INLINE hn::Vec<D> LoadPlanes(D d, const QuantNode& node, uint32_t off, int a, size_t g) {
+  const hn::RebindToSigned<D> di;
+  const hn::Rebind<uint8_t, D> d8;
+  const auto q = hn::ConvertTo(d, hn::PromoteTo(di, hn::LoadU(d8, &node.q[0][0] + off + g)));
+  return hn::MulAdd(q, hn::Set(d, node.scale[a]), hn::Set(d, node.origin[a]));  // q * scale is exact: one rounding
+}
+
+// Slots a ray may enter: every slot of a WideNode (empty ones have inverted infinite boxes, which no ray enters),
+// the occupied ones of a QuantNode (whose empty boxes are finite).
+template <int N>
+HWY_INLINE uint32_t OccupiedSlots(const WideNode<N>&) {
+  return ~0u;
+}
+HWY_INLINE uint32_t OccupiedSlots(const QuantNode& node) { return node.occupied; }
+
+// The node's six plane rows as floats in WideNode's layout (node_floats): the node itself, or `planes` filled by
+// dequantising (the packet kernel reads planes several times per node).
+template <int N>
+HWY_INLINE const float* NodePlanes(const WideNode<N>& node, float* /*planes*/) {
+  return traverse_detail::node_floats(node);
+}
+HWY_INLINE const float* NodePlanes(const QuantNode& node, float* planes) {
+  const hn::CappedTag<float, QuantNode::kWidth> d;
+  for (int row = 0; row < 6; ++row)
+    for (size_t g = 0; g < size_t(QuantNode::kWidth); g += hn::Lanes(d))
+      hn::Store(LoadPlanes(d, node, uint32_t(row * QuantNode::kWidth), row % 3, g), d, planes + row * 8 + g);
+  return planes;
+}
+
+// The tree's plane extent (traverse_detail::plane_extent): from the root for WideBvh, stored for CompactBvh.
+template <int N>
+HWY_INLINE void TreeExtent(const WideBvh<N>& bvh, float extent[3]) {
+  traverse_detail::plane_extent(bvh, extent);
+}
+HWY_INLINE void TreeExtent(const CompactBvh& bvh, float extent[3]) {
+  for (int a = 0; a < 3; ++a) extent[a] = bvh.plane_extent[a];
+}
+
+// ---- leaves ----
+
+// Floats a leaf buffer needs: nine runs of up to kMaxLeafTriangles and one vector's over-read.
+constexpr size_t kMaxLeafTriangles = 16;  // BvhBuildOptions::max_leaf_size's hard cap
+constexpr size_t kLeafBufferFloats = 9 * kMaxLeafTriangles + 16;
+
+template <class Leaves>
+constexpr bool kGathersLeaves = !std::is_same_v<Leaves, TriangleLeaves>;
+
+// The leaf (first, count) in the run layout: in place for TriangleLeaves (from `leaf_data`, its data), else
+// gathered into `buffer` (kLeafBufferFloats). Every lane a kernel loads from a run (up to 8 lanes from any
+// position inside it) is then a written float: a leaf of one lane group is written run after run, each store's
+// lanes past the run landing in the next run before that is written (lanes past the leaf repeat its last
+// triangle); a longer leaf's partial groups are stored masked and the floats after the last run are zeroed.
+HWY_INLINE const float* LeafBlock(const TriangleLeaves&, const float* leaf_data, uint32_t first, uint32_t,
+                                  float*) {
+  return leaf_data + 9 * size_t(first);
+}
+// Gathering: per triangle and vertex one 4-float load (x, y, z and a float of the next vertex), and a 4x4
+// transpose per four triangles makes the x, y and z runs (two transposes side by side on 8-lane vectors).
+// Against 12 hardware gathers per leaf (3 of indices, 9 of coordinates): single rays 1.15 to 1.6 times faster
+// (AVX3, bench/RESULTS.md 2026-12-06).
+template <class D>
+HWY_INLINE void GatherLeaf(D d, const IndexedLeaves& t, uint32_t first, uint32_t count, float* buffer) {
+  constexpr size_t L = hn::MaxLanes(D());
+  const uint32_t* const idx = t.idx + 3 * size_t(first);
+  const float* const xyz = t.xyz;
+  if constexpr (L == 8 || L == 4) {
+    const hn::CappedTag<float, 4> d4;
+    const hn::Repartition<double, decltype(d)> dd;
+    const uint32_t last = count - 1;
+    // Vertex k of triangle j (clamped to the leaf) as (x, y, z, junk).
+    const auto vertex = [&](uint32_t j, int k) {
+      return hn::LoadU(d4, xyz + 3 * size_t(idx[3 * size_t(j < last ? j : last) + size_t(k)]));
+    };
+    const bool one_group = count <= L;
+    for (uint32_t g = 0; g < count; g += uint32_t(L)) {
+      const auto mask = hn::FirstN(d, count - g);
+      for (int k = 0; k < 3; ++k) {
+        hn::Vec<decltype(d)> r[4];
+        for (uint32_t i = 0; i < 4; ++i) {
+          if constexpr (L == 8) r[i] = hn::Combine(d, vertex(g + i + 4, k), vertex(g + i, k));
+          else r[i] = vertex(g + i, k);
+        }
+        const auto t0 = hn::BitCast(dd, hn::InterleaveLower(d, r[0], r[1]));  // x0 x1 y0 y1 (per 4 lanes)
+        const auto t1 = hn::BitCast(dd, hn::InterleaveUpper(d, r[0], r[1]));  // z0 z1 . .
+        const auto t2 = hn::BitCast(dd, hn::InterleaveLower(d, r[2], r[3]));  // x2 x3 y2 y3
+        const auto t3 = hn::BitCast(dd, hn::InterleaveUpper(d, r[2], r[3]));  // z2 z3 . .
+        const hn::Vec<decltype(d)> run[3] = {hn::BitCast(d, hn::InterleaveLower(dd, t0, t2)),
+                                             hn::BitCast(d, hn::InterleaveUpper(dd, t0, t2)),
+                                             hn::BitCast(d, hn::InterleaveLower(dd, t1, t3))};
+        for (int a = 0; a < 3; ++a) {
+          float* const out = buffer + size_t(3 * k + a) * count + g;
+          if (one_group || g + L <= count) hn::StoreU(run[a], d, out);
+          else hn::BlendedStore(run[a], mask, d, out);
+        }
+      }
+    }
+    if (!one_group) hn::StoreU(hn::Zero(d), d, buffer + 9 * size_t(count));
+  } else {  // one lane (HWY_SCALAR): plain copies
+    for (uint32_t j = 0; j < count; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a) buffer[size_t(3 * k + a) * count + j] = xyz[3 * size_t(idx[3 * j + k]) + a];
+    buffer[9 * size_t(count)] = 0;
+  }
+}
+HWY_INLINE const float* LeafBlock(const IndexedLeaves& t, const float*, uint32_t first, uint32_t count,
+                                  float* buffer) {
+  GatherLeaf(hn::CappedTag<float, 8>(), t, first, count, buffer);
+  return buffer;
+}
+
+// Vertex k of leaf triangle j (< count) of a leaf in the run layout.
+HWY_INLINE Vec3f BlockVertex(const float* block, uint32_t count, uint32_t j, int k) {
+  const size_t at = size_t(3 * k) * count + j;
+  return {block[at], block[at + count], block[at + 2 * size_t(count)]};
+}
+
+// Starts loading the leaf (first, count): its run block, or its index triples (the vertices follow from those).
+HWY_INLINE void PrefetchLeaf(const TriangleLeaves&, const float* leaf_data, uint32_t first, uint32_t count) {
+  const char* p = reinterpret_cast<const char*>(leaf_data + 9 * size_t(first));
+  const uintptr_t end = reinterpret_cast<uintptr_t>(p) + 36 * size_t(count);
+  for (uintptr_t a = reinterpret_cast<uintptr_t>(p) & ~uintptr_t(63); a < end; a += 64)
+    __builtin_prefetch(reinterpret_cast<const void*>(a));
+}
+HWY_INLINE void PrefetchLeaf(const IndexedLeaves& t, const float*, uint32_t first, uint32_t count) {
+  const char* p = reinterpret_cast<const char*>(t.idx + 3 * size_t(first));
+  const uintptr_t end = reinterpret_cast<uintptr_t>(p) + 12 * size_t(count);
+  for (uintptr_t a = reinterpret_cast<uintptr_t>(p) & ~uintptr_t(63); a < end; a += 64)
+    __builtin_prefetch(reinterpret_cast<const void*>(a));
+}
+
+// Start of the leaf data the single-ray kernel keeps at hand (SingleRay::leaf_data).
+HWY_INLINE const float* LeafData(const TriangleLeaves& t) { return t.data.data(); }
+HWY_INLINE const float* LeafData(const IndexedLeaves&) { return nullptr; }
+
+}  // namespace
+}  // namespace torte::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // TORTE_SIMD_LAYOUT_INL_H_TARGET
