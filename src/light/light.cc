@@ -135,7 +135,7 @@ void sample_area_light_point(const EmitterView& scene, const Light& light, Vec2f
   }
 }
 
-bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s) {
+bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s, uint32_t part) {
   switch (light.kind) {
     case LightKind::Point:
     case LightKind::Spot: {
@@ -181,7 +181,7 @@ bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u
       return !s->radiance.is_black();
     }
     case LightKind::Patches: {
-      const PatchPoint pp = light.patches->sample(u);
+      const PatchPoint pp = part == kWholeLight ? light.patches->sample(u) : light.patches->sample_part(part, u);
       const Vec3f d = pp.q - p;
       const float dist = length(d);
       if (!(dist > 0)) return false;
@@ -246,6 +246,15 @@ float light_pdf(const EmitterView& scene, const Light& light, Vec3f p, Vec3f wi,
     }
   }
   return 0;
+}
+
+float patch_pdf_in_part(const Light& light, Vec3f p, Vec3f wi, const SurfaceHit& hit, float t, uint32_t* part) {
+  *part = 0;
+  if (light.kind != LightKind::Patches) return 0;
+  const int64_t k = light.patches->find(hit.p);
+  if (k < 0) return 0;
+  *part = light.patches->part_of(size_t(k));
+  return area_to_solid_angle(light.patches->pdf_area_in_part(size_t(k)), p, p + wi * t, hit.ng);
 }
 
 float light_power(const EmitterView& scene, const Light& light) {

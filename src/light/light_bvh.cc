@@ -123,8 +123,9 @@ float LightBounds::importance(Vec3f p, Vec3f n) const {
   return std::max(importance, 0.0f);
 }
 
-LightBounds light_bounds(const EmitterView& scene, const Light& light, float power) {
+LightBounds light_bounds(const EmitterView& scene, const Light& light, float power, uint32_t part) {
   LightBounds b;
+  if (light.kind == LightKind::Patches && part != kWholeLight) power = kPi * light.patches->part_weight(part);
   if (!(power > 0)) return b;
   switch (light.kind) {
     case LightKind::Point:
@@ -149,8 +150,11 @@ LightBounds light_bounds(const EmitterView& scene, const Light& light, float pow
       b.cos_theta_e = std::cos(kPi / 2);
       b.two_sided = light.two_sided;
       break;
-    case LightKind::Patches:
-      for (size_t k = 0; k < light.patches->size(); ++k) {
+    case LightKind::Patches: {
+      const EmissivePatches& ps = *light.patches;
+      const size_t begin = part == kWholeLight ? 0 : ps.part_begin(part);
+      const size_t end = part == kWholeLight ? ps.size() : ps.part_end(part);
+      for (size_t k = begin; k < end; ++k) {
         const EmissivePatch& q = light.patches->patch(k);
         b.bounds.extend(q.p), b.bounds.extend(q.p + q.e1), b.bounds.extend(q.p + q.e2);
         if (!q.triangle) b.bounds.extend(q.p + q.e1 + q.e2);
@@ -159,6 +163,7 @@ LightBounds light_bounds(const EmitterView& scene, const Light& light, float pow
       }
       b.cos_theta_e = std::cos(kPi / 2);
       break;
+    }
     default:
       return b;  // lights at infinity and directional lights: beside the BVH
   }
@@ -169,9 +174,11 @@ LightBounds light_bounds(const EmitterView& scene, const Light& light, float pow
 
 LightBvh::LightBvh(const EmitterView& scene, std::span<const Light> lights, std::span<const float> power) {
   light_count_ = lights.size();
-  trail_.assign(lights.size(), 0);
   in_bvh_.assign(lights.size(), 0);
-  std::vector<LightBounds> all(lights.size());
+  first_item_.assign(lights.size(), 0);
+  item_count_.assign(lights.size(), 0);
+  std::vector<LightBounds> all;
+  std::vector<Item> items;
   std::vector<uint32_t> ids;
   for (size_t i = 0; i < lights.size(); ++i) {
     if (!(power[i] > 0)) continue;
@@ -184,21 +191,29 @@ LightBvh::LightBvh(const EmitterView& scene, std::span<const Light> lights, std:
       if (disk > 0) infinite_irradiance_ += power[i] / (lights[i].kind == LightKind::Distant ? disk : 4 * disk);
       continue;
     }
-    all[i] = light_bounds(scene, lights[i], power[i]);
-    if (all[i].phi > 0) ids.push_back(uint32_t(i)), in_bvh_[i] = 1;
+    const bool parts = lights[i].kind == LightKind::Patches;
+    const uint32_t count = parts ? uint32_t(lights[i].patches->part_count()) : 1;
+    first_item_[i] = uint32_t(items.size());
+    item_count_[i] = count;
+    for (uint32_t j = 0; j < count; ++j) {
+      items.push_back({uint32_t(i), j});
+      all.push_back(light_bounds(scene, lights[i], power[i], parts ? j : kWholeLight));
+      if (all.back().phi > 0) ids.push_back(uint32_t(items.size() - 1)), in_bvh_[i] = 1;
+    }
   }
+  trail_.assign(items.size(), 0);
   if (!ids.empty()) {
     nodes_.reserve(2 * ids.size());
-    build(ids, 0, ids.size(), all, 0, 0);
+    build(ids, 0, ids.size(), all, items, 0, 0);
   }
 }
 
 uint32_t LightBvh::build(std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<LightBounds>& all,
-                         uint64_t trail, int depth) {
+                         const std::vector<Item>& items, uint64_t trail, int depth) {
   const uint32_t index = uint32_t(nodes_.size());
   nodes_.emplace_back();
   if (end - begin == 1) {
-    nodes_[index] = {all[ids[begin]], ids[begin], true};
+    nodes_[index] = {all[ids[begin]], items[ids[begin]].light, items[ids[begin]].part, true};
     trail_[ids[begin]] = trail;
     return index;
   }
@@ -246,14 +261,15 @@ uint32_t LightBvh::build(std::vector<uint32_t>& ids, size_t begin, size_t end, c
     }
   }
   if (depth >= 63) throw Error("light BVH: too deep (over 63 levels)");
-  build(ids, begin, mid, all, trail, depth + 1);
-  const uint32_t second = build(ids, mid, end, all, trail | (uint64_t(1) << depth), depth + 1);
-  nodes_[index] = {node, second, false};
+  build(ids, begin, mid, all, items, trail, depth + 1);
+  const uint32_t second = build(ids, mid, end, all, items, trail | (uint64_t(1) << depth), depth + 1);
+  nodes_[index] = {node, second, 0, false};
   return index;
 }
 
-int LightBvh::sample(Vec3f p, Vec3f n, float u, float* pmf) const {
+int LightBvh::sample(Vec3f p, Vec3f n, float u, float* pmf, uint32_t* part) const {
   *pmf = 0;
+  *part = 0;
   const bool has_bvh = !nodes_.empty();
   const float p_inf = infinite_probability(p, n);
   if (u < p_inf) {
@@ -270,6 +286,7 @@ int LightBvh::sample(Vec3f p, Vec3f n, float u, float* pmf) const {
     if (nd.leaf) {
       if (nd.bounds.importance(p, n) <= 0) return -1;
       *pmf = prob;
+      *part = nd.part;
       return int(nd.child_or_light);
     }
     const float i0 = nodes_[node + 1].bounds.importance(p, n), i1 = nodes_[nd.child_or_light].bounds.importance(p, n);
@@ -298,12 +315,13 @@ float LightBvh::infinite_probability(Vec3f p, Vec3f n) const {
   return std::clamp(infinite_irradiance_ / (infinite_irradiance_ + bounded), kMinShare, 1 - kMinShare);
 }
 
-float LightBvh::pmf(Vec3f p, Vec3f n, int light) const {
+float LightBvh::pmf(Vec3f p, Vec3f n, int light, uint32_t part) const {
   if (light < 0 || size_t(light) >= light_count_ || in_bvh_[size_t(light)] == 0) return 0;
   const float p_inf = infinite_probability(p, n);
-  if (in_bvh_[size_t(light)] == 2) return p_inf / float(infinite_.size());
+  if (in_bvh_[size_t(light)] == 2) return part == 0 ? p_inf / float(infinite_.size()) : 0.0f;
+  if (part >= item_count_[size_t(light)]) return 0;
   float prob = 1 - p_inf;
-  uint64_t trail = trail_[size_t(light)];
+  uint64_t trail = trail_[first_item_[size_t(light)] + part];
   uint32_t node = 0;
   while (!nodes_[node].leaf) {
     const Node& nd = nodes_[node];
@@ -314,7 +332,10 @@ float LightBvh::pmf(Vec3f p, Vec3f n, int light) const {
     node = second ? nd.child_or_light : node + 1;
     trail >>= 1;
   }
-  return nodes_[node].bounds.importance(p, n) > 0 ? prob : 0;
+  // A part of no power is in no leaf: its trail leads to another item's leaf.
+  const Node& leaf = nodes_[node];
+  if (leaf.child_or_light != uint32_t(light) || leaf.part != part) return 0;
+  return leaf.bounds.importance(p, n) > 0 ? prob : 0;
 }
 
 }  // namespace torte

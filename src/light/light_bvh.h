@@ -1,5 +1,7 @@
 // Many-light sampling: a BVH over the bounded lights (pbrt-v4's BVHLightSampler after Conty Estevez and Kulla
-// 2018). Each node bounds its lights' positions, their emission directions (a cone around w of half angle
+// 2018). A Patches light (a voxel world's emitters) is not one leaf but one leaf per part of its patches
+// (EmissivePatches::part_count; one patch each below kMaxParts), so the descent finds the torch next to a point
+// rather than a box around the whole world. Each node bounds its lights' positions, their emission directions (a cone around w of half angle
 // theta_o, widened by theta_e for the spread of emission off each normal) and their power; at a receiving point
 // the sampler descends choosing each child by its importance (power over squared distance, times how far the
 // point lies inside the cones), so a light far away or facing away is seldom chosen. Lights at infinity (and
@@ -42,8 +44,9 @@ struct LightBounds {
 };
 
 /// The bounds of `light` for the sampler, or bounds with phi = 0 for lights at infinity, directional lights
-/// and lights of no power (those the BVH leaves out).
-LightBounds light_bounds(const EmitterView& scene, const Light& light, float power);
+/// and lights of no power (those the BVH leaves out). For a Patches light, `part` picks one of its parts (the
+/// whole light with kWholeLight) and `power` is ignored: a part's power is pi times its weight.
+LightBounds light_bounds(const EmitterView& scene, const Light& light, float power, uint32_t part = kWholeLight);
 
 class LightBvh {
  public:
@@ -53,11 +56,12 @@ class LightBvh {
   LightBvh(const EmitterView& scene, std::span<const Light> lights, std::span<const float> power);
 
   bool empty() const { return light_count_ == 0; }
-  /// A light for a receiver at p (normal n, or 0) from one uniform number u in [0, 1); its probability in *pmf.
-  /// -1 (pmf 0) when no light can reach p.
-  int sample(Vec3f p, Vec3f n, float u, float* pmf) const;
-  /// The probability that sample(p, n, ...) returns `light`.
-  float pmf(Vec3f p, Vec3f n, int light) const;
+  /// A light for a receiver at p (normal n, or 0) from one uniform number u in [0, 1); its probability in *pmf
+  /// and in *part which part of it (a Patches light's, to pass to sample_light; 0 for other kinds). -1 (pmf 0)
+  /// when no light can reach p.
+  int sample(Vec3f p, Vec3f n, float u, float* pmf, uint32_t* part) const;
+  /// The probability that sample(p, n, ...) returns `light` and `part` (0 but for Patches lights).
+  float pmf(Vec3f p, Vec3f n, int light, uint32_t part = 0) const;
   size_t node_count() const { return nodes_.size(); }
   /// The probability that sample(p, n, ...) picks a light at infinity (0 without any, 1 without bounded lights
   /// or when none of them can reach p).
@@ -68,15 +72,21 @@ class LightBvh {
   struct Node {
     LightBounds bounds;
     uint32_t child_or_light = 0;  // inner: index of the second child (the first follows the node); leaf: light
+    uint32_t part = 0;            // leaf: the light's part
     bool leaf = false;
   };
 
  private:
+  struct Item {  // a leaf: a light, or one part of a Patches light
+    uint32_t light, part;
+  };
   uint32_t build(std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<LightBounds>& all,
-                 uint64_t trail, int depth);
+                 const std::vector<Item>& items, uint64_t trail, int depth);
   std::vector<Node> nodes_;
   std::vector<uint32_t> infinite_;      // indices of the lights at infinity
-  std::vector<uint64_t> trail_;         // per light: the branch bits from the root (bit d: second child at depth d)
+  std::vector<uint32_t> first_item_;    // per light: its first item (its parts follow)
+  std::vector<uint32_t> item_count_;    // per light: how many items it has (0 when not in the BVH)
+  std::vector<uint64_t> trail_;         // per item: the branch bits from the root (bit d: second child at depth d)
   std::vector<uint8_t> in_bvh_;         // per light: 1 in the BVH, 2 at infinity, 0 never chosen
   size_t light_count_ = 0;
   float infinite_irradiance_ = 0;  // what the lights at infinity give a surface facing them, summed
