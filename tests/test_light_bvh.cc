@@ -48,6 +48,8 @@ TestScene make_scene(int quads, int points, int spots, int infinite, uint64_t se
     l.object = uint32_t(i);
     l.radiance = Rgb(0.5f + 4 * rng.next_float());
     l.area = s.meshes.back().triangle_area(0) + s.meshes.back().triangle_area(1);
+    const std::vector<float> areas{s.meshes.back().triangle_area(0), s.meshes.back().triangle_area(1)};
+    l.triangles = Distribution1D(areas);  // as Scene sets it: sample_light picks a triangle by area
     l.two_sided = i % 5 == 0;
     s.lights.push_back(l);
   }
@@ -268,4 +270,36 @@ TEST_CASE("light bvh: the parts of a Patches light are leaves; their probabiliti
     INFO(r.message);
     CHECK(r.passed);
   }
+}
+
+TEST_CASE("light bvh: weighed by visibility, the lights at infinity get more where the bounded lights are hidden",
+          "[lights][light_bvh]") {
+  const TestScene s = make_scene(40, 10, 0, 1, 31);
+  LightBvh open(s.view(), s.lights, s.power), weighed(s.view(), s.lights, s.power);
+  // Rays towards bounded lights (finite length) from x > 0 are blocked; the sky is seen from everywhere.
+  weighed.weigh_visibility(s.view(), s.lights, [](const Ray& r) { return r.t_max < kInfinity && r.o.x > 0; });
+  Pcg32 rng(4);
+  int more = 0, same = 0, trials = 0;
+  for (int t = 0; t < 400; ++t) {
+    const Vec3f p(rng.next_float() * 20 - 10, rng.next_float() * 20 - 10, rng.next_float() * 20 - 10);
+    if (std::fabs(p.x) < 2) continue;  // cells across x = 0 see both
+    ++trials;
+    const float a = open.infinite_probability(p, {0, 0, 0}), b = weighed.infinite_probability(p, {0, 0, 0});
+    INFO("p " << p.x << " " << p.y << " " << p.z << ": " << a << " -> " << b);
+    if (p.x > 0) {
+      CHECK(b >= a);
+      more += b > a;
+    } else {
+      CHECK(b == Approx(a).epsilon(1e-5));
+      same += 1;
+    }
+    // Sampling and pmf agree with the weighed share.
+    float pmf = 0;
+    uint32_t part = 0;
+    const int l = weighed.sample(p, {0, 0, 0}, 0.5f * b, &pmf, &part);
+    CHECK(l == int(s.lights.size()) - 1);
+    CHECK(pmf == Approx(b));
+  }
+  CHECK(more > trials / 4);
+  CHECK(same > trials / 4);
 }

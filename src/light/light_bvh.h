@@ -12,10 +12,12 @@
 // Deterministic, no allocation per query, read-only after the build (shared by all threads).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
 #include "core/bounds.h"
+#include "core/ray.h"
 #include "core/vec.h"
 #include "light/light.h"
 
@@ -39,8 +41,9 @@ struct LightBounds {
   float cos_theta_e = 0;      // emission spreads this far off each normal: cos(pi/2) for diffuse, a spot's cone
   bool two_sided = false;
   /// Importance of the group for a receiver at p with normal n (n = 0: no receiver cosine): 0 when no light of
-  /// it can reach p. Conservative: never 0 for a light that can.
-  float importance(Vec3f p, Vec3f n) const;
+  /// it can reach p. Conservative: never 0 for a light that can. The squared distance is clamped at min_d2 (and
+  /// at an eighth of the box's diagonal, squared).
+  float importance(Vec3f p, Vec3f n, float min_d2 = 0) const;
 };
 
 /// The bounds of `light` for the sampler, or bounds with phi = 0 for lights at infinity, directional lights
@@ -67,7 +70,18 @@ class LightBvh {
   /// or when none of them can reach p).
   float infinite_probability(Vec3f p, Vec3f n) const;
   /// The least share of samples either side gets when both exist.
-  static constexpr float kMinShare = 0.1f;
+  static constexpr float kMinShare = 0.02f;
+  /// The irradiance grid's cells at most (see infinite_probability and weigh_visibility).
+  static constexpr size_t kGridCells = size_t(1) << 16;
+  /// Shadow rays per grid cell and side in weigh_visibility.
+  static constexpr int kVisibilityRays = 4;
+  /// The least visible fraction weigh_visibility gives either side ((seen + 1/4) / (rays + 1/4) otherwise).
+  static constexpr float kVisibilityFloor = 0.25f / (kVisibilityRays + 0.25f);
+  /// Weighs the grid behind infinite_probability by visibility: from random points of each cell, shadow rays
+  /// (`occluded`, a scene's occlusion test) towards bounded lights chosen as sample() chooses them and towards
+  /// the lights at infinity. Scene building only (deterministic; `scene` and `lights` as given to the constructor).
+  void weigh_visibility(const EmitterView& scene, std::span<const Light> lights,
+                        const std::function<bool(const Ray&)>& occluded);
 
   struct Node {
     LightBounds bounds;
@@ -82,6 +96,10 @@ class LightBvh {
   };
   uint32_t build(std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<LightBounds>& all,
                  const std::vector<Item>& items, uint64_t trail, int depth);
+  void build_grid();
+  int sample_bounded(Vec3f p, Vec3f n, float u, float prob, float* pmf, uint32_t* part) const;
+  size_t grid_cell(Vec3f p) const;  // the cell holding p, or SIZE_MAX outside the grid
+  float cut_irradiance(Vec3f c, float min_d2) const;
   std::vector<Node> nodes_;
   std::vector<uint32_t> infinite_;      // indices of the lights at infinity
   std::vector<uint32_t> first_item_;    // per light: its first item (its parts follow)
@@ -90,6 +108,14 @@ class LightBvh {
   std::vector<uint8_t> in_bvh_;         // per light: 1 in the BVH, 2 at infinity, 0 never chosen
   size_t light_count_ = 0;
   float infinite_irradiance_ = 0;  // what the lights at infinity give a surface facing them, summed
+  // Near the bounded lights the root's importance (their power as if at the root's centre) says little of where
+  // they are: there the bounded irradiance comes from a grid, each cell summing a cut of the tree at its centre,
+  // times the fraction of shadow rays towards them that arrive (weigh_visibility); the lights at infinity's
+  // irradiance is weighed by their fraction (grid_sky_).
+  Bounds3f grid_box_;
+  int grid_n_[3] = {0, 0, 0};
+  float grid_cell_ = 0, grid_inv_cell_ = 0;
+  std::vector<float> grid_, grid_sky_;
 };
 
 }  // namespace torte

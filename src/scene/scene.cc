@@ -65,6 +65,7 @@ void Scene::finalize(ProgressCounter* progress) {
   }
   light_selection = lights.empty() ? Distribution1D() : Distribution1D(power);
   light_bvh = LightBvh(*this, lights, power);  // before release_positions: it reads emitting triangles
+  light_bvh.weigh_visibility(*this, lights, [this](const Ray& r) { return occluded(r); });
   release_positions();
 }
 
