@@ -106,6 +106,22 @@ float LightBounds::importance(Vec3f p, Vec3f n, float min_d2) const {
   // centre, so the descent stayed uniform for the top levels (10,000 beads: 1.13x better than by power alone).
   const float d2 = std::max({length_squared(p - c), length_squared(bounds.diagonal()) * (1.0f / 64), min_d2});
   if (d2 == 0) return phi;  // a point light at p itself
+  if (normals.cos_theta <= -1 && cos_theta_e < 1) {
+    // Normals everywhere (spheres, points, and their groups): p lies inside the emission cone, only the distance
+    // and the receiver's cosine count. The same value as below with fewer roots: 10,000 beads spent 15 % of
+    // their render time here.
+    float importance = phi / d2;
+    if (n.x != 0 || n.y != 0 || n.z != 0) {
+      const Vec3f v = p - c;
+      const float dc2 = length_squared(v), r2 = length_squared(bounds.diagonal()) * 0.25f;
+      if (dc2 > r2) {
+        const float sin2_b = r2 / dc2, cos_b = safe_sqrt(1 - sin2_b);
+        const float cos_i = std::fabs(dot(v, n)) / std::sqrt(dc2);
+        if (cos_i <= cos_b) importance *= std::max(0.0f, cos_i * cos_b + safe_sqrt(1 - cos_i * cos_i) * std::sqrt(sin2_b));
+      }
+    }
+    return importance;
+  }
   const Vec3f wi = normalize(p - c);
   float cos_w = dot(normals.w, wi);
   if (two_sided) cos_w = std::fabs(cos_w);
