@@ -1,15 +1,17 @@
 // Many-light sampling: a BVH over the bounded lights (pbrt-v4's BVHLightSampler after Conty Estevez and Kulla
 // 2018). A Patches light (a voxel world's emitters) is not one leaf but one leaf per part of its patches
 // (EmissivePatches::part_count; one patch each below kMaxParts), so the descent finds the torch next to a point
-// rather than a box around the whole world. Each node bounds its lights' positions, their emission directions (a cone around w of half angle
-// theta_o, widened by theta_e for the spread of emission off each normal) and their power; at a receiving point
-// the sampler descends choosing each child by its importance (power over squared distance, times how far the
-// point lies inside the cones), so a light far away or facing away is seldom chosen. Lights at infinity (and
-// directional lights) cannot be bounded: they are chosen (uniformly among them) with a probability that weighs
-// their irradiance against the root's importance at the receiver, clamped to [kMinShare, 1 - kMinShare] as
-// neither estimate sees occlusion; pbrt's fixed n_inf / (n_inf + 1) gave a faint sky half of all samples.
+// rather than a box around the whole world. Each node bounds its lights' positions, their emission directions
+// (a cone around w of half angle theta_o, widened by theta_e for the spread of emission off each normal) and
+// their power; at a receiving point the sampler descends choosing each child by its importance (power over
+// squared distance, times how far the point lies inside the cones), so a light far away or facing away is seldom
+// chosen. Lights at infinity (and directional lights) cannot be bounded: they are chosen (uniformly among them)
+// with a probability that weighs their irradiance against the bounded lights' (a grid near them, weighed by
+// visibility at scene build; the root's importance further away), clamped to [kMinShare, 1 - kMinShare]; pbrt's
+// fixed n_inf / (n_inf + 1) gave a faint sky half of all samples, the root's importance alone gave a sunlit
+// Minecraft surface's samples to lava lakes buried under it.
 //
-// Deterministic, no allocation per query, read-only after the build (shared by all threads).
+// Deterministic, no allocation per query, read-only after the build and weigh_visibility (shared by all threads).
 #pragma once
 #include <cstdint>
 #include <functional>
