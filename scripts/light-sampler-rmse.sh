@@ -3,7 +3,10 @@
 # reference (light BVH), then both samplers at SPP samples per pixel; prints each one's RMSE, render time (the EXR's
 # torte:render_seconds) and the RMSE at equal time, RMSE * sqrt(time) (Monte Carlo error falls as 1/sqrt(time)),
 # over all pixels and over those that do not show an emitter (the reference's emission AOV is zero there).
-# Usage: scripts/light-sampler-rmse.sh [build dir] [spp] [reference spp]; W, H set the size (default 240x135).
+# Usage: scripts/light-sampler-rmse.sh [build dir] [spp] [reference spp]; W, H set the size (default 240x135),
+# SCENES the scenes (default below; minecraft.lua is the bluenbt world in daylight, its torches and lava), REPS
+# the renders per sampler (default 3, seeds 1..REPS, the two samplers interleaved so that load changes hit both
+# alike): the RMSE is over all of them (the root of the mean squared error), the time their median.
 # Needs python3-numpy and python3-openimageio (scripts/install-deps.sh --cycles). Writes to out/light-sampler/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,7 +17,8 @@ W=${W:-240}
 H=${H:-135}
 OUT=out/light-sampler
 mkdir -p "$OUT"
-scenes=(${SCENES:-many-lights materials textures cornell-box})
+REPS=${REPS:-3}
+scenes=(${SCENES:-many-lights materials textures cornell-box minecraft})
 for s in "${scenes[@]}"; do
   ref="$OUT/$s-ref$REF_SPP-${W}x$H.exr"
   # With its emission layer: the pixels that show an emitter are left out of the second RMSE below.
@@ -28,12 +32,16 @@ torte.render = function(t) t.light_sampler = "$ls"; return real(t) end
 torte.script_dir = "$PWD/scenes"  -- the scene's own directory, which its paths are relative to
 dofile("scenes/$s.lua")
 LUA
-    "$BUILD/torte" --quiet "$OUT/wrap-$ls.lua" width=$W height=$H spp="$SPP" seed=1 output="$OUT/$s-$ls.exr"
+  done
+  for ((rep = 1; rep <= REPS; ++rep)); do
+    for ls in bvh power; do
+      "$BUILD/torte" --quiet "$OUT/wrap-$ls.lua" width=$W height=$H spp="$SPP" seed=$rep output="$OUT/$s-$ls-$rep.exr"
+    done
   done
 done
-/usr/bin/python3 - "$OUT" "$REF_SPP" "$W" "$H" "${scenes[@]}" <<'PY'
+/usr/bin/python3 - "$OUT" "$REF_SPP" "$W" "$H" "$REPS" "${scenes[@]}" <<'PY'
 import sys, numpy as np, OpenImageIO as oiio
-out, ref_spp, w, h, scenes = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], sys.argv[5:]
+out, ref_spp, w, h, reps, scenes = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), sys.argv[6:]
 def load(path):
     b = oiio.ImageBuf(path)
     names = list(b.spec().channelnames)
@@ -50,12 +58,16 @@ for s in scenes:
     print(f"{s}: {int((~lit).sum())} of {lit.size} pixels show an emitter")
     r = {}
     for ls in ("bvh", "power"):
-        img, _, t = load(f"{out}/{s}-{ls}.exr")
-        e = float(np.sqrt(((img - ref) ** 2).mean()))
-        el = float(np.sqrt(((img - ref) ** 2)[lit].mean()))
+        se, sel, ts = [], [], []
+        for rep in range(1, reps + 1):
+            img, _, t = load(f"{out}/{s}-{ls}-{rep}.exr")
+            se.append(((img - ref) ** 2).mean())
+            sel.append(((img - ref) ** 2)[lit].mean())
+            ts.append(t)
+        e, el, t = float(np.sqrt(np.mean(se))), float(np.sqrt(np.mean(sel))), float(np.median(ts))
         r[ls] = (e * np.sqrt(t), el * np.sqrt(t))
-        print(f"{s} {ls}: RMSE {e:.5f} in {t:.2f} s, at equal time {r[ls][0]:.5f}; without emitter pixels "
-              f"{el:.5f}, at equal time {r[ls][1]:.5f}")
+        print(f"{s} {ls}: RMSE {e:.5f} in {t:.2f} s (median of {', '.join(f'{x:.2f}' for x in ts)}), at equal "
+              f"time {r[ls][0]:.5f}; without emitter pixels {el:.5f}, at equal time {r[ls][1]:.5f}")
     print(f"{s}: the light BVH's RMSE at equal time is {r['power'][0] / r['bvh'][0]:.2f}x lower than by power, "
           f"{r['power'][1] / r['bvh'][1]:.2f}x without the pixels that show emitters")
 PY

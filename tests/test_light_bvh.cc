@@ -8,6 +8,7 @@
 #include "chi2.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "light/emissive_patches.h"
 #include "light/light_bvh.h"
 
 using namespace torte;
@@ -46,7 +47,7 @@ TestScene make_scene(int quads, int points, int spots, int infinite, uint64_t se
     l.kind = LightKind::Area;
     l.object = uint32_t(i);
     l.radiance = Rgb(0.5f + 4 * rng.next_float());
-    l.area = s.meshes.back().triangle_area(0) + s.meshes.back().triangle_area(1);
+    REQUIRE(prepare_mesh_light(s.meshes.back(), &l));  // as Scene sets it up for sample_light
     l.two_sided = i % 5 == 0;
     s.lights.push_back(l);
   }
@@ -142,7 +143,9 @@ TEST_CASE("light bvh: sampling follows the probabilities, and lights facing away
     std::vector<double> observed(s.lights.size() + 1);
     for (int k = 0; k < kSamples; ++k) {
       float pmf = 0;
-      const int l = bvh.sample(p, n, rng.next_float(), &pmf);
+      uint32_t part = 0;
+      const int l = bvh.sample(p, n, rng.next_float(), &pmf, &part);
+      REQUIRE(part == 0);
       if (l < 0) {
         REQUIRE(pmf == 0);
         observed.back() += 1;
@@ -199,8 +202,102 @@ TEST_CASE("light bvh: lights at infinity share a probability weighed by irradian
   const TestScene sky_only = make_scene(0, 0, 0, 1, 4);
   const LightBvh only(sky_only.view(), sky_only.lights, sky_only.power);
   float pmf = 0;
-  CHECK(only.sample(p, {0, 0, 0}, 0.7f, &pmf) == 0);
+  uint32_t part = 7;
+  CHECK(only.sample(p, {0, 0, 0}, 0.7f, &pmf, &part) == 0);
+  CHECK(part == 0);
   CHECK(pmf == 1);
   CHECK(only.pmf(p, {0, 0, 0}, 0) == 1);
   CHECK(LightBvh().empty());
+}
+
+TEST_CASE("light bvh: the parts of a Patches light are leaves; their probabilities follow sampling",
+          "[lights][light_bvh][voxel]") {
+  TestScene s = make_scene(20, 5, 5, 1, 17);
+  auto patches = std::make_shared<EmissivePatches>();
+  Pcg32 rng(21);
+  for (int i = 0; i < 150; ++i) {
+    const Vec3f o(rng.next_float() * 20 - 10, rng.next_float() * 20 - 10, rng.next_float() * 20 - 10);
+    const Frame f = Frame::from_z(random_dir(rng));
+    const Rgb L(0.2f + 2 * rng.next_float());
+    if (i % 4 == 3) patches->add_triangle(o, o + f.s * 0.5f, o + f.t * 0.5f, L, true);
+    else patches->add_parallelogram(o, f.s * 0.4f, f.t * 0.3f, f.n, L, false);
+  }
+  patches->finish();
+  Light pl;
+  pl.kind = LightKind::Patches;
+  pl.patches = patches;
+  s.lights.push_back(pl);
+  s.power.push_back(light_power(s.view(), pl));
+  const int li = int(s.lights.size() - 1);
+  const LightBvh bvh(s.view(), s.lights, s.power);
+  // Bins: one per light but the Patches light, one per part of it, one for "no light".
+  const size_t parts = patches->part_count(), bins = size_t(li) + parts + 1;
+  const auto bin = [&](int l, uint32_t part) { return l == li ? size_t(li) + part : size_t(l); };
+  for (int trial = 0; trial < 4; ++trial) {
+    const Vec3f p(rng.next_float() * 20 - 10, rng.next_float() * 20 - 10, rng.next_float() * 20 - 10);
+    const Vec3f n = trial % 2 ? random_dir(rng) : Vec3f(0, 0, 0);
+    INFO("receiver " << p.x << " " << p.y << " " << p.z);
+    std::vector<double> expected(bins), observed(bins);
+    double sum = 0;
+    for (int l = 0; l < li; ++l) sum += expected[bin(l, 0)] = bvh.pmf(p, n, l);
+    for (uint32_t j = 0; j < parts; ++j) {
+      sum += expected[bin(li, j)] = bvh.pmf(p, n, li, j);
+      const EmissivePatch& q = patches->patch(j);
+      // A patch p lies in front of (or any two-sided one) can light it: never probability zero.
+      if (n.x == 0 && n.y == 0 && n.z == 0 && (q.two_sided || dot(p - q.p, q.n) > 1e-3f)) CHECK(expected[bin(li, j)] > 0);
+    }
+    CHECK(bvh.pmf(p, n, li, uint32_t(parts)) == 0);
+    CHECK(sum <= 1 + 1e-5);
+    CHECK(sum > 0.5);
+    expected.back() = std::max(0.0, 1 - sum);
+    constexpr int kSamples = 200000;
+    for (int k = 0; k < kSamples; ++k) {
+      float pmf = 0;
+      uint32_t part = 0;
+      const int l = bvh.sample(p, n, rng.next_float(), &pmf, &part);
+      if (l < 0) {
+        observed.back() += 1;
+        continue;
+      }
+      if (l != li) REQUIRE(part == 0);
+      REQUIRE(pmf == Approx(bvh.pmf(p, n, l, part)).epsilon(1e-4));
+      observed[bin(l, part)] += 1;
+    }
+    for (double& e : expected) e *= kSamples;
+    const Chi2Result r = chi2_test(observed, expected, 0.01, 4);
+    INFO(r.message);
+    CHECK(r.passed);
+  }
+}
+
+TEST_CASE("light bvh: weighed by visibility, the lights at infinity get more where the bounded lights are hidden",
+          "[lights][light_bvh]") {
+  const TestScene s = make_scene(40, 10, 0, 1, 31);
+  LightBvh open(s.view(), s.lights, s.power), weighed(s.view(), s.lights, s.power);
+  // Rays towards bounded lights (finite length) from x > 0 are blocked; the sky is seen from everywhere.
+  weighed.weigh_visibility(s.view(), s.lights, [](const Ray& r) { return r.t_max < kInfinity && r.o.x > 0; });
+  Pcg32 rng(4);
+  int more = 0, same = 0, trials = 0;
+  for (int t = 0; t < 400; ++t) {
+    const Vec3f p(rng.next_float() * 20 - 10, rng.next_float() * 20 - 10, rng.next_float() * 20 - 10);
+    if (std::fabs(p.x) < 2) continue;  // cells across x = 0 see both
+    ++trials;
+    const float a = open.infinite_probability(p, {0, 0, 0}), b = weighed.infinite_probability(p, {0, 0, 0});
+    INFO("p " << p.x << " " << p.y << " " << p.z << ": " << a << " -> " << b);
+    if (p.x > 0) {
+      CHECK(b >= a);
+      more += b > a;
+    } else {
+      CHECK(b == Approx(a).epsilon(1e-5));
+      same += 1;
+    }
+    // Sampling and pmf agree with the weighed share.
+    float pmf = 0;
+    uint32_t part = 0;
+    const int l = weighed.sample(p, {0, 0, 0}, 0.5f * b, &pmf, &part);
+    CHECK(l == int(s.lights.size()) - 1);
+    CHECK(pmf == Approx(b));
+  }
+  CHECK(more > trials / 4);
+  CHECK(same > trials / 4);
 }

@@ -135,6 +135,73 @@ TEST_CASE("EmissivePatches: chi-square of patch and position choice, pdf_area = 
   CHECK(r.passed);
 }
 
+namespace {
+
+// Random small parallelograms and triangles (some two-sided) in a 40-unit box.
+EmissivePatches random_patches(size_t count, uint64_t seed) {
+  EmissivePatches p;
+  Pcg32 rng(seed);
+  const auto r = [&] { return rng.next_float(); };
+  for (size_t i = 0; i < count; ++i) {
+    const Vec3f o(r() * 40 - 20, r() * 40 - 20, r() * 40 - 20);
+    const Vec3f e1(r() - 0.5f, r() - 0.5f, r() - 0.5f), e2(r() - 0.5f, r() - 0.5f, r() - 0.5f);
+    const Rgb L(0.5f + 3 * r(), 0.5f + r(), 0.2f + r());
+    if (i % 3 == 2) p.add_triangle(o, o + e1, o + e2, L, i % 2 == 0);
+    else p.add_parallelogram(o, e1, e2, cross(e1, e2), L, i % 2 == 0);
+  }
+  p.finish();
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("EmissivePatches: parts, sample_part's density and find() of the points it samples", "[light][voxel][chi2]") {
+  // One patch per part, then three per part above kMaxParts.
+  for (const size_t count : {size_t(500), 2 * EmissivePatches::kMaxParts + 7}) {
+    const EmissivePatches p = random_patches(count, count);
+    INFO(count << " patches");
+    const size_t per = count > EmissivePatches::kMaxParts ? 3 : 1;
+    REQUIRE(p.part_count() == (p.size() + per - 1) / per);
+    double sum = 0;
+    for (uint32_t j = 0; j < p.part_count(); ++j) {
+      sum += p.part_weight(j);
+      REQUIRE(p.part_end(j) - p.part_begin(j) <= per);
+      for (size_t k = p.part_begin(j); k < p.part_end(j); ++k) REQUIRE(p.part_of(k) == j);
+    }
+    CHECK(sum == Approx(p.weight()).epsilon(1e-4));
+    Pcg32 rng(3);
+    int found = 0;
+    for (int i = 0; i < 4000; ++i) {
+      const uint32_t j = uint32_t(rng.next_float() * float(p.part_count())) % uint32_t(p.part_count());
+      const PatchPoint s = p.sample_part(j, test::next_2d(rng));
+      const int64_t k = p.find(s.q);
+      REQUIRE(k >= 0);
+      REQUIRE(p.part_of(size_t(k)) == j);
+      CHECK(s.pdf_area == Approx(p.pdf_area_in_part(size_t(k))).epsilon(1e-5));
+      // A point off every patch's plane finds none (the patches are far apart for their size in this box).
+      found += p.find(s.q + s.n * 0.05f) >= 0;
+    }
+    CHECK(found < 40);
+  }
+  // Within a part, patches are chosen by power: chi-square over the patches of a few three-patch parts.
+  const EmissivePatches p = random_patches(2 * EmissivePatches::kMaxParts + 7, 5);
+  Pcg32 rng(9);
+  for (const uint32_t j : {0u, 17u, 4000u}) {
+    std::vector<double> expected, observed(3);
+    for (size_t k = p.part_begin(j); k < p.part_end(j); ++k) {
+      const EmissivePatch& q = p.patch(k);
+      expected.push_back(q.area * q.radiance.average() * (q.two_sided ? 2 : 1) / p.part_weight(j));
+    }
+    REQUIRE(expected.size() == 3);
+    constexpr int kSamples = 30000;
+    for (int i = 0; i < kSamples; ++i) observed[size_t(p.find(p.sample_part(j, test::next_2d(rng)).q)) - p.part_begin(j)] += 1;
+    for (double& e : expected) e *= kSamples;
+    const auto r = test::chi2_test(observed, expected);
+    INFO(r.message);
+    CHECK(r.passed);
+  }
+}
+
 TEST_CASE("Voxel emitters: only exposed faces become patches; cell meshes emit per placement", "[light][voxel]") {
   VoxelGrid grid;
   // A 3x3x3 block of emitting id 1: 54 exposed faces (the centre and inner faces are buried).
@@ -216,6 +283,48 @@ TEST_CASE("Voxel emitters: light_pdf through a hit equals the sample pdf", "[lig
   }
   CHECK(checked > 400);
   CHECK(cells > 20);
+}
+
+TEST_CASE("Voxel emitters: the light BVH's part of a patch, sampled and found again through real hits",
+          "[light][voxel][light_bvh]") {
+  VoxelGrid grid;
+  for (int x = -3; x <= 3; ++x)
+    for (int z = -3; z <= 3; ++z) grid.set(x, 0, z, int16_t((x + z) % 3 == 0 ? 1 : 3));
+  grid.set(0, 2, 0, 1);
+  grid.set(2, 1, -1, -2);
+  grid.set(-2, 1, 2, -2);
+  SceneBuilder b;
+  b.add_shape(voxel_desc(grid, {emitting_cube(1, Rgb(2, 1, 0.5f)), VoxelCubeDef{3, {}, Rgb(0)}},
+                         {flame_cell(-2, Rgb(5))}, rotate(20, {1, 0.3f, 0}) * scale({1, 0.7f, 1.2f})));
+  const auto scene = b.flatten();
+  const Light* l = patches_light(*scene);
+  REQUIRE(l != nullptr);
+  const int li = int(l - scene->lights.data());
+  REQUIRE(l->patches->part_count() == l->patches->size());  // one leaf per patch
+  Pcg32 rng(12);
+  int checked = 0;
+  for (const Vec3f p : {Vec3f{0.3f, 4, 0.2f}, Vec3f{-5, 3, 1}, Vec3f{2, 1.5f, 4}}) {
+    for (int i = 0; i < 600; ++i) {
+      float pmf = 0;
+      uint32_t part = 0;
+      const int chosen = scene->light_bvh.sample(p, {0, 0, 0}, rng.next_float(), &pmf, &part);
+      if (chosen != li) continue;
+      REQUIRE(pmf == Approx(scene->light_bvh.pmf(p, {0, 0, 0}, li, part)).epsilon(1e-4));
+      LightSample s;
+      if (!sample_light(*scene, *l, p, test::next_2d(rng), &s, part)) continue;
+      Ray ray{p, s.wi, kInfinity};
+      Hit hit;
+      if (!scene->intersect(ray, &hit)) continue;
+      const SurfaceHit sh = scene->surface(ray, hit);
+      const SurfaceEmission* e = patch_emission(*scene, sh);
+      if (!e || std::fabs(hit.t - s.distance) > 1e-3f * s.distance) continue;  // something in front
+      uint32_t hit_part = 0;
+      CHECK(patch_pdf_in_part(*l, p, s.wi, sh, hit.t, &hit_part) == Approx(s.pdf).epsilon(2e-3));
+      CHECK(hit_part == part);
+      ++checked;
+    }
+  }
+  CHECK(checked > 400);
 }
 
 TEST_CASE("Voxel emitters: light paths (IGI) leave with the emitted flux, on the emitting side", "[light][voxel][igi]") {

@@ -101,6 +101,24 @@ void prepare_sphere_light(const Quadric& q, Light* light) {
   light->sphere_radius = q.radius * scale;
 }
 
+bool prepare_mesh_light(const TriangleMesh& mesh, Light* light) {
+  std::vector<float> areas(mesh.triangle_count());
+  double total = 0;
+  for (size_t t = 0; t < areas.size(); ++t) total += areas[t] = mesh.triangle_area(t);
+  if (!(total > 0)) return false;
+  light->triangles = Distribution1D(areas);
+  light->area = float(total);
+  light->emitter_triangles.resize(areas.size());
+  for (size_t t = 0; t < areas.size(); ++t) {
+    const uint32_t* idx = mesh.triangle(t);
+    const Vec3f p0 = mesh.position(idx[0]), e1 = mesh.position(idx[1]) - p0, e2 = mesh.position(idx[2]) - p0;
+    const Vec3f c = cross(e1, e2);
+    const float len = length(c);
+    light->emitter_triangles[t] = {p0, e1, e2, len > 0 ? c / len : Vec3f{0, 0, 1}};  // zero area: never chosen
+  }
+  return true;
+}
+
 Rgb escaped_radiance(const Light& light, Vec3f dir) {
   switch (light.kind) {
     case LightKind::Infinite: return light.radiance;
@@ -140,7 +158,7 @@ void sample_area_light_point(const EmitterView& scene, const Light& light, Vec2f
   }
 }
 
-bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s) {
+bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s, uint32_t part) {
   switch (light.kind) {
     case LightKind::Point:
     case LightKind::Spot: {
@@ -186,7 +204,7 @@ bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u
       return !s->radiance.is_black();
     }
     case LightKind::Patches: {
-      const PatchPoint pp = light.patches->sample(u);
+      const PatchPoint pp = part == kWholeLight ? light.patches->sample(u) : light.patches->sample_part(part, u);
       const Vec3f d = pp.q - p;
       const float dist = length(d);
       if (!(dist > 0)) return false;
@@ -251,6 +269,15 @@ float light_pdf(const EmitterView& scene, const Light& light, Vec3f p, Vec3f wi,
     }
   }
   return 0;
+}
+
+float patch_pdf_in_part(const Light& light, Vec3f p, Vec3f wi, const SurfaceHit& hit, float t, uint32_t* part) {
+  *part = 0;
+  if (light.kind != LightKind::Patches) return 0;
+  const int64_t k = light.patches->find(hit.p);
+  if (k < 0) return 0;
+  *part = light.patches->part_of(size_t(k));
+  return area_to_solid_angle(light.patches->pdf_area_in_part(size_t(k)), p, p + wi * t, hit.ng);
 }
 
 float light_power(const EmitterView& scene, const Light& light) {

@@ -121,11 +121,20 @@ void sample_area_light_point(const EmitterView& scene, const Light& light, Vec2f
 /// The radiance an area light emits at a point of its surface (p, n, uv): its constant times its texture there.
 Rgb area_radiance(const EmitterView& scene, const Light& light, Vec3f p, Vec3f n, Vec2f uv);
 
-// Samples light `l` as seen from point p. Returns false when the sample carries no light.
-bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s);
+/// `part` of sample_light: the whole light (the only choice but for Patches lights).
+constexpr uint32_t kWholeLight = 0xffffffffu;
+// Samples light `l` as seen from point p. Returns false when the sample carries no light. `part`: for a Patches
+// light, one of its parts (EmissivePatches::part_count; the light BVH picks them), s->pdf then the density given
+// that part; ignored by other kinds.
+bool sample_light(const EmitterView& scene, const Light& light, Vec3f p, Vec2f u, LightSample* s,
+                  uint32_t part = kWholeLight);
 // Solid-angle density with which sample_light would have chosen direction wi from p, given that the ray hit
 // `hit` on this area light (for area lights), or escaped (infinite-like lights). 0 for delta lights.
 float light_pdf(const EmitterView& scene, const Light& light, Vec3f p, Vec3f wi, const SurfaceHit* hit, float t);
+/// For a ray from p along wi that hit Patches light `light` at `hit` (distance t): the patch's part in *part and
+/// the solid-angle density with which sample_light(..., *part) would have chosen that direction; 0 when the hit
+/// lies on none of the light's patches.
+float patch_pdf_in_part(const Light& light, Vec3f p, Vec3f wi, const SurfaceHit& hit, float t, uint32_t* part);
 // Radiance an area light emits from `hit` towards -w (w is the ray direction).
 Rgb area_emission(const EmitterView& scene, const Light& light, const SurfaceHit& hit, Vec3f w);
 // Emission of a surface that is part of a Patches light (a voxel face or cell shape): the scene's
@@ -141,6 +150,9 @@ Rgb escaped_radiance(const Light& light, Vec3f dir);
 // Total emitted power, used to weight light selection (lights at infinity: the power through the scene's
 // bounding sphere).
 float light_power(const EmitterView& scene, const Light& light);
+/// Sets an area light on `mesh` (world space) up for sampling: its total area, the triangle distribution by area and
+/// the triangles' sampling records. False (and nothing usable set) when the mesh has zero area.
+bool prepare_mesh_light(const TriangleMesh& mesh, Light* light);
 // Enables solid-angle sampling for an area light on a sphere placed by a similarity transform (no-op otherwise).
 void prepare_sphere_light(const Quadric& q, Light* light);
 // Spot light intensity factor for a direction at cos_theta from the axis (smoothstep, pbrt-v4).

@@ -248,9 +248,9 @@ void sample_next_rays(const ShadeContext& ctx, std::span<const uint32_t> queue, 
 
 inline void add_candidate(const ShadeContext& ctx, std::vector<LightCandidate>& out, uint32_t slot,
                           const SurfaceHit& s, const Frame& frame, Vec3f wo, Vec3f wo_local, const Light& light,
-                          float pmf, Vec2f u) {
+                          float pmf, Vec2f u, uint32_t part = kWholeLight) {
   LightSample ls;
-  if (!sample_light(ctx.scene, light, s.p, u, &ls)) return;
+  if (!sample_light(ctx.scene, light, s.p, u, &ls, part)) return;
   const Vec3f wi_local = frame.to_local(ls.wi);
   if (!consistent_sides(s.ng, wo, ls.wi, wo_local, wi_local)) return;
   out.push_back({slot, ls.wi, wi_local, ls.radiance, pmf * ls.pdf, ls.distance, ls.delta});
@@ -293,12 +293,13 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
       }
     } else {
       float pmf;
+      uint32_t part = kWholeLight;  // the BVH picks a part of a Patches light
       const float u = sc.u.light_select[k];
-      const int l = ctx.rules.light_sampler == LightSamplerKind::Bvh ? scene.light_bvh.sample(s.p, s.ng, u, &pmf)
+      const int l = ctx.rules.light_sampler == LightSamplerKind::Bvh ? scene.light_bvh.sample(s.p, s.ng, u, &pmf, &part)
                                                                       : scene.light_selection.sample_discrete(u, &pmf);
       if (l >= 0 && pmf > 0)
         detail::add_candidate(ctx, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], pmf,
-                              Vec2f(sc.u.light_x[k], sc.u.light_y[k]));
+                              Vec2f(sc.u.light_x[k], sc.u.light_y[k]), part);
     }
   }
 

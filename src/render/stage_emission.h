@@ -45,9 +45,18 @@ inline void add_surface_emission(const Scene& scene, const TransportRules& rules
       ps.radiance[i] += ps.beta[i] * le * w;
     }
   } else if (const SurfaceEmission* e = patch_emission(scene, s); e && (e->two_sided || dot(s.ng, d) < 0)) {
-    // An emitting voxel face or cell shape (a Patches light).
+    // An emitting voxel face or cell shape (a Patches light). The light BVH samples one part of it at a time:
+    // the density is that of the hit patch's part, times the part's probability.
     const Light& light = scene.lights[size_t(e->light)];
-    const float w = emission_weight(scene, ps, rules, i, e->light, light_pdf(scene, light, o, d, &s, t));
+    float w = 1;
+    if (ps.depth[i] > 0 && !(ps.flags[i] & kPathSpecular) && !rules.sample_all_lights &&
+        rules.light_sampler == LightSamplerKind::Bvh) {
+      uint32_t part;
+      const float pdf = patch_pdf_in_part(light, o, d, s, t, &part);
+      w = power_heuristic(1, ps.bsdf_pdf[i], 1, scene.light_bvh.pmf(ps.prev_p[i], ps.prev_n[i], e->light, part) * pdf);
+    } else {
+      w = emission_weight(scene, ps, rules, i, e->light, light_pdf(scene, light, o, d, &s, t));
+    }
     ps.radiance[i] += ps.beta[i] * e->radiance * w;
   }
 }

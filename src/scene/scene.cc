@@ -39,21 +39,8 @@ void Scene::finalize(ProgressCounter* progress) {
   for (Light& light : lights) {
     if (light.kind != LightKind::Area) continue;
     if (light.object < meshes.size()) {
-      const TriangleMesh& mesh = meshes[light.object];
-      std::vector<float> areas(mesh.triangle_count());
-      double total = 0;
-      for (size_t t = 0; t < areas.size(); ++t) total += areas[t] = mesh.triangle_area(t);
-      if (!(total > 0)) throw Error(light_name(light) + ": the emitting mesh has zero area");
-      light.triangles = Distribution1D(areas);
-      light.area = float(total);
-      light.emitter_triangles.resize(areas.size());
-      for (size_t t = 0; t < areas.size(); ++t) {
-        const uint32_t* idx = mesh.triangle(t);
-        const Vec3f p0 = mesh.position(idx[0]), e1 = mesh.position(idx[1]) - p0, e2 = mesh.position(idx[2]) - p0;
-        const Vec3f c = cross(e1, e2);
-        const float len = length(c);
-        light.emitter_triangles[t] = {p0, e1, e2, len > 0 ? c / len : Vec3f{0, 0, 1}};  // zero area: never chosen
-      }
+      if (!prepare_mesh_light(meshes[light.object], &light))
+        throw Error(light_name(light) + ": the emitting mesh has zero area");
     } else {
       light.area = area(quadrics[light.object - meshes.size()]);
       prepare_sphere_light(quadrics[light.object - meshes.size()], &light);
@@ -73,6 +60,7 @@ void Scene::finalize(ProgressCounter* progress) {
   }
   light_selection = lights.empty() ? Distribution1D() : Distribution1D(power);
   light_bvh = LightBvh(*this, lights, power);  // before release_positions: it reads emitting triangles
+  light_bvh.weigh_visibility(*this, lights, [this](const Ray& r) { return occluded(r); });
   release_positions();
 }
 
