@@ -13,15 +13,21 @@ void sort_hits(const Scene& scene, const TransportRules& rules, const Sampler& s
   uint32_t counts[kMaterialTypeCount] = {};
   const size_t n = rays.size();
   out.unsorted.resize(n);
+  // Surfaces first, in a loop of their own: a reconstruction is a chain of latencies (vertex loads, a square root,
+  // a division) that the core overlaps across hits only when little else sits between them.
+  for (size_t k = 0; k < n; ++k) {
+    const Hit& hit = hits.hit[k];
+    if (hit.prim == kNoHit) continue;
+    // Built in place (a prvalue initialising the slot): assigning the returned hit would copy it through the stack,
+    // and those loads of just-stored fields stall store forwarding, once per hit.
+    ::new (static_cast<void*>(&hits.surface[k])) SurfaceHit(scene.surface(Ray{rays.origin(k), rays.dir(k), hit.t}, hit));
+  }
   size_t kept = 0;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t i = rays.path[k];
     const Hit& hit = hits.hit[k];
     if (hit.prim == kNoHit) continue;
-    // Built in place (a prvalue initialising the slot): assigning the returned hit would copy it through the stack,
-    // and those loads of just-stored fields stall store forwarding, once per hit.
-    SurfaceHit& s = *::new (static_cast<void*>(&hits.surface[k]))
-        SurfaceHit(scene.surface(Ray{rays.origin(k), rays.dir(k), hit.t}, hit));
+    SurfaceHit& s = hits.surface[k];
     // `direct` follows specular chains only: a non-specular sample just looks for emission at its next hit.
     if (ps.depth[i] >= rules.max_depth || (rules.specular_chains_only && (ps.flags[i] & kPathScattered))) continue;
     ps.footprint[i] += spread * hit.t;  // ray-cone width at the hit
