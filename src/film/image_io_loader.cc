@@ -60,16 +60,24 @@ const ImageModuleApi& module() {
 }  // namespace
 
 void preload_image_io() {
+  // Joined when the process exits (a static's destructor), so the loader thread never outlives main: the leak
+  // checker and the dynamic linker's own exit then see no load in flight. A failure is left for the use that needs
+  // the module (call_once then tries again and throws there).
+  struct Loader {
+    std::thread thread;
+    ~Loader() {
+      if (thread.joinable()) thread.join();
+    }
+  };
+  static Loader loader;
   static std::once_flag started;
-  // Detached: a process that ends first just drops the load. A failure is left for the use that needs the module
-  // (call_once then tries again and throws there).
   std::call_once(started, [] {
-    std::thread([] {
+    loader.thread = std::thread([] {
       try {
         module();
       } catch (...) {
       }
-    }).detach();
+    });
   });
 }
 
