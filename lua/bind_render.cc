@@ -29,12 +29,12 @@ namespace {
 // Passes progress on to `inner` (or nowhere), and once a render has run for a second starts loading the image
 // module (OpenImageIO's ~250 libraries: half a second of dynamic linking) on a background thread, so the image
 // output after a long render does not wait for it. Short renders (tests, previews) do not load a module they may
-// never use.
+// never use, nor do the ranks of a distributed render that write no image (all but rank 0).
 class PreloadImageIo : public ProgressSink {
  public:
   explicit PreloadImageIo(ProgressSink* inner) : inner_(inner) {}
   void update(uint64_t done, uint64_t total, uint64_t rays, double elapsed) override {
-    if (elapsed >= 1 && !started_.exchange(true, std::memory_order_relaxed)) preload_image_io();
+    if (elapsed >= 1 && !started_.exchange(true, std::memory_order_relaxed) && dist::rank() == 0) preload_image_io();
     if (inner_) inner_->update(done, total, rays, elapsed);
   }
 
