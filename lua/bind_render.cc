@@ -1,4 +1,4 @@
-// torte.scene() and its methods, torte.render{...}, torte.filter.* and the image returned by render.
+// torte.scene() and its methods, torte.render{...} and torte.filter.* (the image render returns: bind_image.cc).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -456,135 +456,6 @@ int l_render(lua_State* L) {
   return 1;
 }
 
-std::shared_ptr<RenderedImage> self_image(lua_State* L, const char* method) {
-  auto img = to_object<RenderedImage>(L, 1);
-  if (!img) throw Error(std::string("image:") + method + " must be called with ':' on an image");
-  return img;
-}
-
-// image:write(path [, {exposure = stops, tonemap = "standard" | "filmic" | "agx"}]); --exposure and --tonemap
-// on the command line win over the script's values.
-int image_write(lua_State* L) {
-  auto img = self_image(L, "write");
-  if (lua_type(L, 2) != LUA_TSTRING) throw Error("image:write expects a file name");
-  const std::string path = lua_tostring(L, 2);
-  check_write(L, path, "image:write");
-  WriteOptions options;
-  if (!lua_isnoneornil(L, 3)) {
-    KwArgs kw(L, 3, "image:write");
-    options.exposure = float(kw.number("exposure", 0));
-    const std::string view = kw.string("tonemap", "standard");
-    if (!parse_view_transform(view, options.view))
-      kw.fail("tonemap", std::string("must be ") + kViewTransformChoices + ", got \"" + view + "\"");
-    kw.finish();
-  }
-  const RunContext& ctx = run_context(L);
-  if (dist::rank() != 0) {  // a distributed render's image is rank 0's; the other ranks write nothing
-    lua_settop(L, 1);
-    return 1;
-  }
-  if (ctx.exposure_override) options.exposure = *ctx.exposure_override;
-  if (ctx.tonemap_override) options.view = *ctx.tonemap_override;
-  const auto t0 = std::chrono::steady_clock::now();
-  write_image(img->image, path, options);
-  run_context(L).write_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!run_context(L).quiet) std::fprintf(stderr, "wrote %s\n", path.c_str());
-  lua_settop(L, 1);
-  return 1;
-}
-
-// image:pixel(x, y) -> r, g, b (0-based, (0,0) top left)
-int image_pixel(lua_State* L) {
-  auto img = self_image(L, "pixel");
-  const lua_Integer x = luaL_checkinteger(L, 2), y = luaL_checkinteger(L, 3);
-  if (x < 0 || y < 0 || x >= img->image.width || y >= img->image.height)
-    throw Error("image:pixel: (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the image");
-  const Rgb c = img->image.at(int(x), int(y));
-  lua_pushnumber(L, c.r);
-  lua_pushnumber(L, c.g);
-  lua_pushnumber(L, c.b);
-  return 3;
-}
-
-// image:mean() -> r, g, b over all pixels
-int image_mean(lua_State* L) {
-  auto img = self_image(L, "mean");
-  double r = 0, g = 0, b = 0;
-  for (const Rgb& c : img->image.pixels) r += c.r, g += c.g, b += c.b;
-  const double n = double(img->image.pixels.size());
-  lua_pushnumber(L, r / n);
-  lua_pushnumber(L, g / n);
-  lua_pushnumber(L, b / n);
-  return 3;
-}
-
-// image.stages: nil unless the render collected its profile, else {threads = n, <stage> = {seconds, calls,
-// items}, ..., shade = {<material type> = {...}}} (render/stage_stats.h; shade lists the types that were hit).
-void push_stages(lua_State* L, const StageStats& st) {
-  if (!st.enabled) {
-    lua_pushnil(L);
-    return;
-  }
-  auto push_time = [&](const StageTime& t) {
-    lua_createtable(L, 0, 3);
-    lua_pushnumber(L, t.seconds);
-    lua_setfield(L, -2, "seconds");
-    lua_pushinteger(L, lua_Integer(t.calls));
-    lua_setfield(L, -2, "calls");
-    lua_pushinteger(L, lua_Integer(t.items));
-    lua_setfield(L, -2, "items");
-  };
-  lua_createtable(L, 0, kStageCount + 2);
-  lua_pushinteger(L, st.threads);
-  lua_setfield(L, -2, "threads");
-  for (int i = 0; i < kStageCount; ++i) {
-    push_time(st.stage[i]);
-    lua_setfield(L, -2, stage_name(Stage(i)));
-  }
-  lua_newtable(L);
-  for (int t = 0; t < kShadedMaterialTypeCount; ++t)
-    if (st.shade[t].calls != 0) {
-      push_time(st.shade[t]);
-      lua_setfield(L, -2, shade_stage_name(MaterialType(t)));
-    }
-  lua_setfield(L, -2, "shade");
-}
-
-int image_index(lua_State* L) {
-  auto img = to_object<RenderedImage>(L, 1);
-  if (!img) throw Error("image fields need an image");
-  const std::string key = luaL_checkstring(L, 2);
-  if (key == "width") {
-    lua_pushinteger(L, img->image.width);
-  } else if (key == "height") {
-    lua_pushinteger(L, img->image.height);
-  } else if (key == "rays") {
-    lua_pushinteger(L, lua_Integer(img->stats.rays()));
-  } else if (key == "dropped_samples") {
-    lua_pushinteger(L, lua_Integer(img->stats.dropped_samples));
-  } else if (key == "render_seconds") {
-    lua_pushnumber(L, img->stats.render_seconds);
-  } else if (key == "build_seconds") {
-    lua_pushnumber(L, img->build_seconds);
-  } else if (key == "scene_reused") {
-    lua_pushboolean(L, img->scene_reused);
-  } else if (key == "interrupted") {
-    lua_pushboolean(L, img->stats.interrupted);
-  } else if (key == "time_limited") {
-    lua_pushboolean(L, img->stats.time_limited);
-  } else if (key == "spp") {  // reached: the most any pixel took (fewer than asked after a time limit)
-    lua_pushinteger(L, img->stats.spp_reached);
-  } else if (key == "samples") {  // camera samples taken in all (adaptive sampling takes fewer)
-    lua_pushinteger(L, lua_Integer(img->stats.samples_done));
-  } else if (key == "stages") {
-    push_stages(L, img->stats.stages);
-  } else if (push_image_field(L, *img, key) || push_method(L, 1, key)) {
-  } else {
-    throw Error("image has no field '" + key + "'");
-  }
-  return 1;
-}
-
 }  // namespace
 
 void open_render(lua_State* L, int torte_index) {
@@ -599,15 +470,6 @@ void open_render(lua_State* L, int torte_index) {
   lua_pushcfunction(L, guarded<scene_stats>);  // lua/scene_stats.h
   lua_setfield(L, -2, "stats");
   lua_setfield(L, -2, "__index");
-  lua_pop(L, 2);
-
-  push_object(L, std::make_shared<RenderedImage>());
-  lua_getmetatable(L, -1);
-  lua_pushcfunction(L, guarded<image_index>);
-  lua_setfield(L, -2, "__index");
-  const luaL_Reg image_methods[] = {{"write", guarded<image_write>}, {"pixel", guarded<image_pixel>},
-                                    {"mean", guarded<image_mean>}, {nullptr, nullptr}};
-  set_methods(L, image_methods);
   lua_pop(L, 2);
 
   const luaL_Reg fns[] = {{"scene", guarded<l_scene>},

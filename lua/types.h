@@ -50,8 +50,6 @@ std::vector<Aov> parse_aov_names(const std::vector<std::string>& names, const st
 /// from img.pixel_spp and img.stats, which must be set first.
 void add_aovs(RenderedImage& img, const Scene& scene, const Camera& camera, const RenderSettings& s,
               AovRequest request, const std::atomic<bool>* cancel);
-/// Pushes image field `key` handled by lua/bind_image.cc (layers, layer); false when it is not one of those.
-bool push_image_field(lua_State* L, const RenderedImage& img, const std::string& key);
 
 // Settings of the whole run that bindings consult (from the command line).
 struct RunContext {
@@ -85,8 +83,8 @@ void open_geometry(lua_State* L, int torte_index);  // torte.shape.*, transforms
 void open_materials(lua_State* L, int torte_index);  // torte.material.*
 void open_lights(lua_State* L, int torte_index);     // torte.light.*
 void open_cameras(lua_State* L, int torte_index);    // torte.camera.*
-void open_render(lua_State* L, int torte_index);     // torte.scene, torte.render, torte.filter.*, images
-void open_images(lua_State* L, int torte_index);     // torte.denoise (lua/bind_image.cc)
+void open_render(lua_State* L, int torte_index);     // torte.scene, torte.render, torte.filter.*
+void open_images(lua_State* L, int torte_index);     // images' fields and methods, torte.denoise (lua/bind_image.cc)
 void open_meshes(lua_State* L, int torte_index);     // torte.mesh.*, torte.clock
 void open_gltf(lua_State* L, int torte_index);       // torte.gltf.load (lua/bind_gltf.cc)
 void open_textures(lua_State* L, int torte_index);   // torte.texture.* (lua/bind_texture.cc)
