@@ -1,7 +1,7 @@
 #include "accel/shape_set.h"
 
-
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -95,6 +95,7 @@ void ShapeSet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std:
   if (!any_owned) {  // the tree's order is the table: input triangle = mesh_first[m] + its index in mesh m
     if (table) tri_ref_ = std::move(order);
     free_storage(order);
+    pack_triangle_refs(meshes);
     return;
   }
   if (table) tri_ref_ = make_huge_page_vector<uint32_t>(n);
@@ -149,6 +150,21 @@ void ShapeSet::store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std:
       std::memcpy(meshes[m].indices.data(), scratch.data() + 3 * size_t(mesh_first[m]), 4 * meshes[m].indices.size());
   });
   free_storage(order);
+  pack_triangle_refs(meshes);
+}
+
+void ShapeSet::pack_triangle_refs(const std::vector<TriangleMesh>& meshes) {
+  ref_local_bits_ = 0;
+  if (tri_ref_.empty()) return;
+  size_t largest = 0;
+  for (const TriangleMesh& m : meshes) largest = std::max(largest, m.triangle_count());
+  const int local_bits = std::bit_width(largest), mesh_bits = std::bit_width(meshes.size() - 1);
+  if (local_bits + mesh_bits > 32 || local_bits >= 32) return;  // stays a concatenated index, found by search
+  parallel_for(size_t(0), tri_ref_.size(), [&](size_t i) {
+    const uint32_t g = tri_ref_[i], m = mesh_holding(mesh_first_, g);
+    tri_ref_[i] = m << local_bits | (g - mesh_first_[m]);
+  });
+  ref_local_bits_ = uint8_t(local_bits);
 }
 
 bool ShapeSet::intersect_one(const Ray& ray, Hit* hit) const {
