@@ -11,8 +11,6 @@ namespace torte {
 
 namespace {
 
-constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;  // largest float below 1
-
 // Direction with the given cos(theta) and azimuth 2 pi u around +z; sin_theta is passed in so callers can compute
 // it without cancellation.
 Vec3f spherical_direction(float sin_theta, float cos_theta, float u) {
@@ -60,6 +58,8 @@ Distribution1D::Distribution1D(std::span<const float> weights) : func_(weights.b
   // Exact endpoints, so u in [0, 1) always falls inside the table.
   cdf_[0] = 0;
   cdf_[n] = 1;
+  uniform_ = std::all_of(func_.begin(), func_.end(), [&](float w) { return w == func_[0]; });
+  uniform_pmf_ = pmf(0);
 }
 
 float Distribution1D::pmf(int i) const {
@@ -68,7 +68,7 @@ float Distribution1D::pmf(int i) const {
   return integral_ > 0 ? func_[size_t(i)] / (integral_ * n) : 1 / n;
 }
 
-int Distribution1D::sample_discrete(float u, float* pmf_out, float* u_remapped) const {
+int Distribution1D::sample_by_search(float u, float* pmf_out, float* u_remapped) const {
   const int n = int(func_.size());
   if (n == 0) {  // default-constructed: nothing to pick (e.g. a scene without lights)
     if (pmf_out) *pmf_out = 0;

@@ -33,6 +33,8 @@ inline float power_heuristic(float nf, float f_pdf, float ng, float g_pdf) {
   return (f * f) / (f * f + g * g);
 }
 
+inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;  // the largest float below 1
+
 // Piecewise-constant 1D distribution over n bins of [0,1) built from non-negative weights. If all weights are
 // zero it falls back to uniform so sampling stays defined.
 class Distribution1D {
@@ -42,7 +44,17 @@ class Distribution1D {
   size_t size() const { return func_.size(); }
   float integral() const { return integral_; }  // sum of weights / n (the average weight)
   // Picks bin i with probability weights[i] / sum; *pmf receives that probability, *u_remapped a fresh uniform.
-  int sample_discrete(float u, float* pmf = nullptr, float* u_remapped = nullptr) const;
+  int sample_discrete(float u, float* pmf = nullptr, float* u_remapped = nullptr) const {
+    if (uniform_ && u >= 0) {  // inline: an emitting quad's triangle is chosen once per light sample
+      const int n = int(func_.size());
+      const float x = std::min(u, kOneMinusEpsilon) * float(n);
+      const int i = std::min(int(x), n - 1);
+      if (pmf) *pmf = uniform_pmf_;
+      if (u_remapped) *u_remapped = std::clamp(x - float(i), 0.0f, kOneMinusEpsilon);
+      return i;
+    }
+    return sample_by_search(u, pmf, u_remapped);
+  }
   float pmf(int i) const;
   // Continuous sample in [0,1) with density func/integral; *pdf receives it, *bin the bin index.
   float sample_continuous(float u, float* pdf = nullptr, int* bin = nullptr) const;
@@ -50,6 +62,10 @@ class Distribution1D {
  private:
   std::vector<float> func_, cdf_;
   float integral_ = 0;
+  // Equal weights (a quad's two triangles, a constant environment row): the bin is floor(u n), no search.
+  int sample_by_search(float u, float* pmf, float* u_remapped) const;
+  bool uniform_ = false;
+  float uniform_pmf_ = 0;  // pmf(i) of every bin when uniform_, so sampling and pmf() agree to the bit
 };
 
 // Piecewise-constant 2D distribution over [0,1)^2 on an nu x nv grid of non-negative weights (row-major,

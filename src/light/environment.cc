@@ -20,7 +20,6 @@ Vec2f equirect_uv(Vec3f d) {
   const float theta = std::acos(std::clamp(d.y, -1.0f, 1.0f));
   float phi = std::atan2(d.z, d.x);
   if (phi < 0) phi += 2 * kPi;
-  constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
   return {std::min(phi / (2 * kPi), kOneMinusEpsilon), std::min(theta / kPi, kOneMinusEpsilon)};
 }
 
