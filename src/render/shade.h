@@ -246,11 +246,11 @@ void sample_next_rays(const ShadeContext& ctx, std::span<const uint32_t> queue, 
   }
 }
 
-inline void add_candidate(const ShadeContext& ctx, std::vector<LightCandidate>& out, uint32_t slot,
+inline void add_candidate(const EmitterView& emitters, std::vector<LightCandidate>& out, uint32_t slot,
                           const SurfaceHit& s, const Frame& frame, Vec3f wo, Vec3f wo_local, const Light& light,
                           float pmf, Vec2f u, uint32_t part = kWholeLight) {
   LightSample ls;
-  if (!sample_light(ctx.scene, light, s.p, u, &ls, part)) return;
+  if (!sample_light(emitters, light, s.p, u, &ls, part)) return;
   const Vec3f wi_local = frame.to_local(ls.wi);
   if (!consistent_sides(s.ng, wo, ls.wi, wo_local, wi_local)) return;
   out.push_back({slot, ls.wi, wi_local, ls.radiance, pmf * ls.pdf, ls.distance, ls.delta});
@@ -279,6 +279,7 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
     sc.wo_local[k] = sc.frame[k].to_local(-ctx.rays.dir(slot));
   }
   if (!scene.lights.empty() && !ctx.rules.sample_all_lights) detail::draw_light_numbers(ctx, queue, sc.u);
+  const EmitterView emitters = scene.emitters();  // once, not per light sample
   for (size_t k = 0; k < n && !scene.lights.empty(); ++k) {
     if (!sc.bsdf[k].has_non_specular()) continue;
     const uint32_t slot = queue[k], i = ctx.rays.path[slot];
@@ -288,7 +289,7 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
       const uint32_t px = ps.pixel[i], si = ps.sample[i];
       for (size_t l = 0; l < scene.lights.size(); ++l) {
         const Vec2f u = ctx.sampler.get_2d(px, si, kDimAllLightsBase + uint32_t(ps.depth[i]) * 4096 + uint32_t(l));
-        detail::add_candidate(ctx, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], 1,
+        detail::add_candidate(emitters, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], 1,
                               u);
       }
     } else {
@@ -298,7 +299,7 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
       const int l = ctx.rules.light_sampler == LightSamplerKind::Bvh ? scene.light_bvh.sample(s.p, s.ng, u, &pmf, &part)
                                                                       : scene.light_selection.sample_discrete(u, &pmf);
       if (l >= 0 && pmf > 0)
-        detail::add_candidate(ctx, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], pmf,
+        detail::add_candidate(emitters, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], pmf,
                               Vec2f(sc.u.light_x[k], sc.u.light_y[k]), part);
     }
   }
