@@ -219,8 +219,10 @@ TEST_CASE("Uniform triangle barycentrics", "[sampling][chi2]") {
   CHECK(r.passed);
 }
 
-TEST_CASE("Distribution1D discrete sampling follows the weights", "[sampling][chi2][distribution]") {
-  const std::vector<float> w = {0, 1, 3, 0.5f, 0, 2, 7, 0.25f, 0};
+namespace {
+// Chi-square tests of Distribution1D::sample_discrete over weights `w`: the bins, the reported pmf (against the
+// weights and against pmf()), and the remapped u.
+void check_discrete_sampling(const std::vector<float>& w, uint64_t seed) {
   double sum = 0;
   for (float x : w) sum += x;
   const Distribution1D d(w);
@@ -238,7 +240,7 @@ TEST_CASE("Distribution1D discrete sampling follows the weights", "[sampling][ch
   constexpr int n = 1000000, nu = 20;
   std::vector<double> observed(w.size(), 0.0), expected(w.size()), u_obs(nu, 0.0), u_exp(nu, double(n) / nu);
   for (size_t i = 0; i < w.size(); ++i) expected[i] = n * w[i] / sum;
-  Pcg32 rng(31);
+  Pcg32 rng(seed);
   int bad_pmf = 0;
   for (int k = 0; k < n; ++k) {
     float pmf = -1, ur = -1;
@@ -247,7 +249,7 @@ TEST_CASE("Distribution1D discrete sampling follows the weights", "[sampling][ch
     REQUIRE(i < int(w.size()));
     REQUIRE(ur >= 0);
     REQUIRE(ur < 1);
-    if (std::fabs(pmf - w[size_t(i)] / sum) > 1e-6) ++bad_pmf;
+    if (std::fabs(pmf - w[size_t(i)] / sum) > 1e-6 || pmf != d.pmf(i)) ++bad_pmf;
     observed[size_t(i)] += 1;
     u_obs[size_t(std::min(int(ur * nu), nu - 1))] += 1;
   }
@@ -259,6 +261,14 @@ TEST_CASE("Distribution1D discrete sampling follows the weights", "[sampling][ch
   const Chi2Result ru = run_chi2(u_obs, u_exp);
   INFO(ru.message);
   CHECK(ru.passed);
+}
+}  // namespace
+
+TEST_CASE("Distribution1D discrete sampling follows the weights", "[sampling][chi2][distribution]") {
+  SECTION("unequal weights, empty bins") { check_discrete_sampling({0, 1, 3, 0.5f, 0, 2, 7, 0.25f, 0}, 31); }
+  // Equal weights take the inline floor(u n) path instead of the search.
+  SECTION("two equal weights (a quad light)") { check_discrete_sampling({2.5f, 2.5f}, 32); }
+  SECTION("seven equal weights") { check_discrete_sampling(std::vector<float>(7, 0.3f), 33); }
 }
 
 TEST_CASE("Distribution1D continuous sampling has density func/integral", "[sampling][chi2][distribution]") {
@@ -291,6 +301,23 @@ TEST_CASE("Distribution1D continuous sampling has density func/integral", "[samp
 
 TEST_CASE("Distribution1D edge cases", "[sampling][distribution]") {
   constexpr float kBelowOne = 0x1.fffffep-1f;
+  SECTION("equal weights: u outside [0, 1) or NaN still gives a valid bin and a remapped u in [0, 1)") {
+    for (size_t n : {size_t(2), size_t(3), size_t(1000)}) {
+      const Distribution1D d(std::vector<float>(n, 1.0f));
+      for (float u : {0.0f, kBelowOne, 1.0f, -0.5f, 2.0f, std::numeric_limits<float>::quiet_NaN()}) {
+        INFO("n = " << n << ", u = " << u);
+        float pmf = 0, ur = -1;
+        const int i = d.sample_discrete(u, &pmf, &ur);
+        CHECK(i >= 0);
+        CHECK(i < int(n));
+        CHECK(pmf == d.pmf(i));
+        CHECK(ur >= 0);
+        CHECK(ur < 1);
+      }
+      CHECK(d.sample_discrete(kBelowOne) == int(n) - 1);
+      CHECK(d.sample_discrete(0.0f) == 0);
+    }
+  }
   SECTION("u at the ends of [0, 1) never selects an empty bin or returns 1") {
     const std::vector<float> w = {0, 0, 1, 0, 2, 0, 0};
     const Distribution1D d(w);
