@@ -7,13 +7,17 @@
 
 #include "accel/compact_bvh.h"
 #include "accel/hit.h"
+#include "accel/packed_leaves.h"
 #include "workloads.h"
 
 namespace torte::bench {
 
-enum class Layout { kDefault, kQuantNodes, kIndexedLeaves, kCompact };
-constexpr Layout kCompactLayouts[] = {Layout::kQuantNodes, Layout::kIndexedLeaves, Layout::kCompact};
-/// "default", "quant-nodes", "indexed-leaves", "compact" (both).
+enum class Layout { kDefault, kQuantNodes, kIndexedLeaves, kCompact, kPackedLeaves, kCompactPacked };
+constexpr Layout kCompactLayouts[] = {Layout::kQuantNodes, Layout::kIndexedLeaves, Layout::kCompact,
+                                      Layout::kPackedLeaves, Layout::kCompactPacked};
+constexpr Layout kAllLayouts[] = {Layout::kDefault,      Layout::kQuantNodes,   Layout::kIndexedLeaves,
+                                  Layout::kCompact,      Layout::kPackedLeaves, Layout::kCompactPacked};
+/// "default", "quant-nodes", "indexed-leaves", "compact" (quant + indexed), "packed-leaves", "compact-packed".
 const char* layout_name(Layout l);
 
 /// The compact parts of `a`'s tree over `mesh` (one mesh: the leaves own their triples and the vertices in order
@@ -21,6 +25,9 @@ const char* layout_name(Layout l);
 struct CompactAccel {
   CompactBvh quant;
   IndexedLeaves indexed;
+  WideBvh<8> wide_packed;  // the default tree with its leaf references rewritten to the packed blocks
+  CompactBvh quant_packed;
+  PackedLeaves packed;
 };
 CompactAccel build_compact(const TorteAccel<8>& a, const TriangleMesh& mesh);
 

@@ -21,6 +21,7 @@
 #include <type_traits>
 
 #include "accel/compact_bvh.h"
+#include "accel/packed_leaves.h"
 #include "accel/wide_bvh.h"
 #include "traverse-inl.h"
 
@@ -146,6 +147,69 @@ HWY_INLINE const float* LeafBlock(const IndexedLeaves& t, const float*, uint32_t
   return buffer;
 }
 
+// Decoding a packed leaf block: per index run one byte load widened to int32 lanes, and per coordinate one table
+// lookup (TableLookupLanes: a permute across the lanes) into the block's coordinate runs loaded as vectors; two
+// tables and a blend when the leaf's vertices outnumber the lanes, hardware gathers when they outnumber two
+// vectors (leaves of many triangles sharing few vertices). Lanes past the leaf take its vertex 0.
+template <class D>
+HWY_INLINE void DecodeLeaf(D d, const PackedLeaves& t, uint32_t offset, uint32_t count, float* buffer) {
+  constexpr size_t L = hn::MaxLanes(D());
+  const uint8_t* const b = t.bytes(offset);
+  const uint32_t nv = b[1];
+  const uint8_t* const idx = b + 2;
+  const float* const xyz = t.data.data() + offset + PackedLeaves::block_words(count, 0);
+  if constexpr (L == 1) {  // HWY_SCALAR: plain copies
+    for (uint32_t j = 0; j < count; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a) buffer[size_t(3 * k + a) * count + j] = xyz[a * nv + idx[k * count + j]];
+    buffer[9 * size_t(count)] = 0;
+  } else {
+    const hn::RebindToSigned<D> di;
+    const hn::Rebind<uint8_t, D> d8;
+    const bool one_group = count <= L, two = nv > L, gather = nv > 2 * L;
+    hn::Vec<D> lo[3], hi[3];
+    if (!gather)
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = hn::LoadU(d, xyz + a * nv);
+        hi[a] = two ? hn::LoadU(d, xyz + a * nv + L) : lo[a];
+      }
+    for (uint32_t g = 0; g < count; g += uint32_t(L)) {
+      const auto live = hn::FirstN(di, count - g);
+      for (int k = 0; k < 3; ++k) {
+        const auto iv = hn::IfThenElseZero(live, hn::PromoteTo(di, hn::LoadU(d8, idx + k * count + g)));
+        hn::Vec<D> run[3];
+        if (HWY_UNLIKELY(gather)) {
+          for (int a = 0; a < 3; ++a) run[a] = hn::GatherIndex(d, xyz + a * nv, iv);
+        } else {
+          const auto in_hi = hn::RebindMask(d, hn::Gt(iv, hn::Set(di, int32_t(L - 1))));
+          const auto ind = hn::IndicesFromVec(d, hn::And(iv, hn::Set(di, int32_t(L - 1))));
+          for (int a = 0; a < 3; ++a) {
+            run[a] = hn::TableLookupLanes(lo[a], ind);
+            if (two) run[a] = hn::IfThenElse(in_hi, hn::TableLookupLanes(hi[a], ind), run[a]);
+          }
+        }
+        for (int a = 0; a < 3; ++a) {
+          float* const out = buffer + size_t(3 * k + a) * count + g;
+          if (one_group || g + L <= count) hn::StoreU(run[a], d, out);
+          else hn::BlendedStore(run[a], hn::RebindMask(d, live), d, out);
+        }
+      }
+    }
+    if (!one_group) hn::StoreU(hn::Zero(d), d, buffer + 9 * size_t(count));
+  }
+}
+HWY_INLINE const float* LeafBlock(const PackedLeaves& t, const float*, uint32_t offset, uint32_t count,
+                                  float* buffer) {
+  DecodeLeaf(hn::CappedTag<float, 16>(), t, offset, count, buffer);
+  return buffer;
+}
+
+// The leaf-order index of the first triangle of the leaf a child reference (less kLeafFlag) names: the reference
+// itself, or a packed block's first word.
+HWY_INLINE uint32_t LeafFirst(const TriangleLeaves&, uint32_t leaf) { return leaf; }
+HWY_INLINE uint32_t LeafFirst(const IndexedLeaves&, uint32_t leaf) { return leaf; }
+HWY_INLINE uint32_t LeafFirst(const PackedLeaves& t, uint32_t leaf) { return t.first(leaf); }
+
 // Vertex k of leaf triangle j (< count) of a leaf in the run layout.
 HWY_INLINE Vec3f BlockVertex(const float* block, uint32_t count, uint32_t j, int k) {
   const size_t at = size_t(3 * k) * count + j;
@@ -166,9 +230,18 @@ HWY_INLINE void PrefetchLeaf(const IndexedLeaves& t, const float*, uint32_t firs
     __builtin_prefetch(reinterpret_cast<const void*>(a));
 }
 
+// A packed block's size is in its header: the lines of a typical one (about 19 bytes per triangle).
+HWY_INLINE void PrefetchLeaf(const PackedLeaves& t, const float*, uint32_t offset, uint32_t count) {
+  const char* p = reinterpret_cast<const char*>(t.data.data() + offset);
+  const uintptr_t end = reinterpret_cast<uintptr_t>(p) + 8 + 19 * size_t(count);
+  for (uintptr_t a = reinterpret_cast<uintptr_t>(p) & ~uintptr_t(63); a < end; a += 64)
+    __builtin_prefetch(reinterpret_cast<const void*>(a));
+}
+
 // Start of the leaf data the single-ray kernel keeps at hand (SingleRay::leaf_data).
 HWY_INLINE const float* LeafData(const TriangleLeaves& t) { return t.data.data(); }
 HWY_INLINE const float* LeafData(const IndexedLeaves&) { return nullptr; }
+HWY_INLINE const float* LeafData(const PackedLeaves&) { return nullptr; }
 
 }  // namespace
 }  // namespace torte::HWY_NAMESPACE

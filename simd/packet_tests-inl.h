@@ -279,15 +279,17 @@ HWY_INLINE bool PacketTriangle(const float* base, uint32_t first, uint32_t count
   return found;
 }
 
-// Tests leaf triangles [first, first + count) against the packet's lanes, one triangle at a time (PacketTriangle).
-// Closest-hit packets of one octant first drop the triangles their interval misses (IntervalTriangles: on camera
-// packets three quarters of a leaf's triangles, which no lane would have hit). Returns false when no lane can have
-// been hit (the any-hit caller then skips its all-occluded check). Gathered leaves (LeafBlock) are gathered once
-// into `buffer` (kLeafBufferFloats) for all lanes.
+// Tests leaf triangles [first, first + count) of the leaf `leaf` names (LeafFirst) against the packet's lanes, one
+// triangle at a time (PacketTriangle). Closest-hit packets of one octant first drop the triangles their interval
+// misses (IntervalTriangles: on camera packets three quarters of a leaf's triangles, which no lane would have
+// hit). Returns false when no lane can have been hit (the any-hit caller then skips its all-occluded check).
+// Gathered or decoded leaves (LeafBlock) are put in the run layout once into `buffer` (kLeafBufferFloats) for all
+// lanes.
 template <bool kAny, size_t P, class Leaves>
-HWY_INLINE bool PacketLeaf(const Leaves& tris, uint32_t first, uint32_t count, uint32_t lanes, Packet<P>& p,
+HWY_INLINE bool PacketLeaf(const Leaves& tris, uint32_t leaf, uint32_t count, uint32_t lanes, Packet<P>& p,
                            float* buffer) {
-  const float* const base = LeafBlock(tris, LeafData(tris), first, count, buffer);
+  const float* const base = LeafBlock(tris, LeafData(tris), leaf, count, buffer);
+  const uint32_t first = LeafFirst(tris, leaf);
   // One permutation for the packet (camera and shadow packets): vertex k's coordinate on permuted axis j is run
   // 3 k + axes[j] of the leaf, broadcast straight from the leaf (staging the nine floats per triangle on the stack
   // cost ~40 instructions per triangle, callgrind).

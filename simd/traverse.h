@@ -26,6 +26,7 @@
 
 #include "accel/compact_bvh.h"
 #include "accel/hit.h"
+#include "accel/packed_leaves.h"
 #include "accel/wide_bvh.h"
 
 namespace torte {
@@ -65,6 +66,8 @@ void intersect_any_packets(const WideBvh<8>& bvh, const TriangleLeaves& tris, co
 TORTE_COMPACT_TRAVERSAL(CompactBvh, TriangleLeaves)
 TORTE_COMPACT_TRAVERSAL(CompactBvh, IndexedLeaves)
 TORTE_COMPACT_TRAVERSAL(WideBvh<8>, IndexedLeaves)
+TORTE_COMPACT_TRAVERSAL(CompactBvh, PackedLeaves)
+TORTE_COMPACT_TRAVERSAL(WideBvh<8>, PackedLeaves)
 #undef TORTE_COMPACT_TRAVERSAL
 
 // Name of the Highway target the traversal kernels dispatch to on this CPU (e.g. "AVX3", "AVX2", "SCALAR").

@@ -29,7 +29,8 @@ HWY_BEFORE_NAMESPACE();
 namespace torte::HWY_NAMESPACE {
 
 // Exported per target (HWY_EXPORT needs plain function names): Q = quantised nodes, W = default nodes,
-// T = triangle leaves, I = indexed leaves; packet_size is 8 or 16 (checked by the callers below).
+// T = triangle leaves, I = indexed leaves, P = packed
+// leaves; packet_size is 8 or 16 (checked by the callers below).
 #define TORTE_COMPACT_KERNELS(Name, Tree, Leaves)                                                              \
   void ClosestSingle##Name(const Tree& b, const Leaves& t, const RaySoA& r, size_t n, Hit* h) {               \
     ClosestSingle(b, t, r, n, h);                                                                              \
@@ -46,6 +47,8 @@ namespace torte::HWY_NAMESPACE {
 TORTE_COMPACT_KERNELS(QT, CompactBvh, TriangleLeaves)
 TORTE_COMPACT_KERNELS(QI, CompactBvh, IndexedLeaves)
 TORTE_COMPACT_KERNELS(WI, WideBvh<8>, IndexedLeaves)
+TORTE_COMPACT_KERNELS(QP, CompactBvh, PackedLeaves)
+TORTE_COMPACT_KERNELS(WP, WideBvh<8>, PackedLeaves)
 #undef TORTE_COMPACT_KERNELS
 
 }  // namespace torte::HWY_NAMESPACE
@@ -85,6 +88,8 @@ void check_packet_size(int packet_size) {
 TORTE_COMPACT_ENTRIES(QT, CompactBvh, TriangleLeaves)
 TORTE_COMPACT_ENTRIES(QI, CompactBvh, IndexedLeaves)
 TORTE_COMPACT_ENTRIES(WI, WideBvh<8>, IndexedLeaves)
+TORTE_COMPACT_ENTRIES(QP, CompactBvh, PackedLeaves)
+TORTE_COMPACT_ENTRIES(WP, WideBvh<8>, PackedLeaves)
 #undef TORTE_COMPACT_ENTRIES
 
 }  // namespace torte

@@ -215,18 +215,20 @@ HWY_NOINLINE bool IntersectLeafRest(D d, const float* block, uint32_t first, uin
   return IntersectLeafGroupsFrom<kAny>(d, block, first, count, uint32_t(hn::Lanes(d)), px, py, pz, r, t_max, hit);
 }
 
-// Tests leaf triangles [first, first + count) (lanes = triangles). Closest hit: shrinks *t_max and fills *hit
+// Tests leaf triangles [first, first + count) (lanes = triangles) of the leaf a child reference (less kLeafFlag)
+// names (LeafFirst). Closest hit: shrinks *t_max and fills *hit
 // with the closest hit closer than *t_max. Any hit: returns at the first hit. `buffer` (kLeafBufferFloats, for
 // leaves that are gathered first: LeafBlock).
 template <bool kAny, class Leaves>
-HWY_INLINE bool IntersectLeaf(const Leaves& tris, uint32_t first, uint32_t count, const SingleRay& r,
+HWY_INLINE bool IntersectLeaf(const Leaves& tris, uint32_t leaf, uint32_t count, const SingleRay& r,
                               float* t_max, Hit* hit, float* buffer) {
   const hn::CappedTag<float, 8> d;
   const uint32_t L = uint32_t(hn::Lanes(d));
   // Run 3 * vertex + axis of the leaf starts at base + (3 * vertex + axis) * count: the ray's permuted axes pick
   // vertex 0's three runs, and vertices 1 and 2 lie 3 * count and 6 * count floats further (three multiplies per
   // leaf, and the rest fits x86 addressing modes).
-  const float* const base = LeafBlock(tris, r.leaf_data, first, count, buffer);
+  const float* const base = LeafBlock(tris, r.leaf_data, leaf, count, buffer);
+  const uint32_t first = LeafFirst(tris, leaf);
   const size_t c = count, v1 = 3 * c, v2 = 6 * c;
   const float* const px = base + size_t(r.k(0)) * c;
   const float* const py = base + size_t(r.k(1)) * c;
