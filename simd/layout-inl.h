@@ -84,13 +84,14 @@ constexpr size_t kLeafBufferFloats = 9 * kMaxLeafTriangles + 16;
 template <class Leaves>
 constexpr bool kGathersLeaves = !std::is_same_v<Leaves, TriangleLeaves>;
 
-// The leaf (first, count) in the run layout: in place for TriangleLeaves (from `leaf_data`, its data), else
-// gathered into `buffer` (kLeafBufferFloats). Every lane a kernel loads from a run (up to 8 lanes from any
+// The leaf (first, count) in the run layout, runs *stride floats apart (the caller sets it to count; a decoded
+// leaf may widen it): in place for TriangleLeaves (from `leaf_data`, its data), else gathered or decoded into
+// `buffer` (kLeafBufferFloats). Every lane a kernel loads from a run (up to 8 lanes from any
 // position inside it) is then a written float: a leaf of one lane group is written run after run, each store's
 // lanes past the run landing in the next run before that is written (lanes past the leaf repeat its last
 // triangle); a longer leaf's partial groups are stored masked and the floats after the last run are zeroed.
 HWY_INLINE const float* LeafBlock(const TriangleLeaves&, const float* leaf_data, uint32_t first, uint32_t,
-                                  float*) {
+                                  float*, uint32_t* /*stride: count*/) {
   return leaf_data + 9 * size_t(first);
 }
 // Gathering: per triangle and vertex one 4-float load (x, y, z and a float of the next vertex), and a 4x4
@@ -142,7 +143,7 @@ HWY_INLINE void GatherLeaf(D d, const IndexedLeaves& t, uint32_t first, uint32_t
   }
 }
 HWY_INLINE const float* LeafBlock(const IndexedLeaves& t, const float*, uint32_t first, uint32_t count,
-                                  float* buffer) {
+                                  float* buffer, uint32_t* /*stride: count*/) {
   GatherLeaf(hn::CappedTag<float, 8>(), t, first, count, buffer);
   return buffer;
 }
@@ -151,8 +152,11 @@ HWY_INLINE const float* LeafBlock(const IndexedLeaves& t, const float*, uint32_t
 // lookup (TableLookupLanes: a permute across the lanes) into the block's coordinate runs loaded as vectors; two
 // tables and a blend when the leaf's vertices outnumber the lanes, hardware gathers when they outnumber two
 // vectors (leaves of many triangles sharing few vertices). Lanes past the leaf take its vertex 0.
+// A leaf of one vector's triangles takes runs of a whole vector each (stride L): every run is one store, which
+// the kernels' loads then read whole, where runs of `count` overlapping stores stall the loads spanning two
+// (store forwarding fails on them). Returns the stride.
 template <class D>
-HWY_INLINE void DecodeLeaf(D d, const PackedLeaves& t, uint32_t offset, uint32_t count, float* buffer) {
+HWY_INLINE uint32_t DecodeLeaf(D d, const PackedLeaves& t, uint32_t offset, uint32_t count, float* buffer) {
   constexpr size_t L = hn::MaxLanes(D());
   const uint8_t* const b = t.bytes(offset);
   const uint32_t nv = b[1];
@@ -163,10 +167,12 @@ HWY_INLINE void DecodeLeaf(D d, const PackedLeaves& t, uint32_t offset, uint32_t
       for (int k = 0; k < 3; ++k)
         for (int a = 0; a < 3; ++a) buffer[size_t(3 * k + a) * count + j] = xyz[a * nv + idx[k * count + j]];
     buffer[9 * size_t(count)] = 0;
+    return count;
   } else {
     const hn::RebindToSigned<D> di;
     const hn::Rebind<uint8_t, D> d8;
     const bool one_group = count <= L, two = nv > L, gather = nv > 2 * L;
+    const uint32_t stride = one_group ? uint32_t(L) : count;
     hn::Vec<D> lo[3], hi[3];
     if (!gather)
       for (int a = 0; a < 3; ++a) {
@@ -189,18 +195,19 @@ HWY_INLINE void DecodeLeaf(D d, const PackedLeaves& t, uint32_t offset, uint32_t
           }
         }
         for (int a = 0; a < 3; ++a) {
-          float* const out = buffer + size_t(3 * k + a) * count + g;
+          float* const out = buffer + size_t(3 * k + a) * stride + g;
           if (one_group || g + L <= count) hn::StoreU(run[a], d, out);
           else hn::BlendedStore(run[a], hn::RebindMask(d, live), d, out);
         }
       }
     }
     if (!one_group) hn::StoreU(hn::Zero(d), d, buffer + 9 * size_t(count));
+    return stride;
   }
 }
 HWY_INLINE const float* LeafBlock(const PackedLeaves& t, const float*, uint32_t offset, uint32_t count,
-                                  float* buffer) {
-  DecodeLeaf(hn::CappedTag<float, 16>(), t, offset, count, buffer);
+                                  float* buffer, uint32_t* stride) {
+  *stride = DecodeLeaf(hn::CappedTag<float, 16>(), t, offset, count, buffer);
   return buffer;
 }
 
@@ -210,10 +217,10 @@ HWY_INLINE uint32_t LeafFirst(const TriangleLeaves&, uint32_t leaf) { return lea
 HWY_INLINE uint32_t LeafFirst(const IndexedLeaves&, uint32_t leaf) { return leaf; }
 HWY_INLINE uint32_t LeafFirst(const PackedLeaves& t, uint32_t leaf) { return t.first(leaf); }
 
-// Vertex k of leaf triangle j (< count) of a leaf in the run layout.
-HWY_INLINE Vec3f BlockVertex(const float* block, uint32_t count, uint32_t j, int k) {
-  const size_t at = size_t(3 * k) * count + j;
-  return {block[at], block[at + count], block[at + 2 * size_t(count)]};
+// Vertex k of leaf triangle j (< count) of a leaf in the run layout, runs `stride` floats apart.
+HWY_INLINE Vec3f BlockVertex(const float* block, uint32_t stride, uint32_t j, int k) {
+  const size_t at = size_t(3 * k) * stride + j;
+  return {block[at], block[at + stride], block[at + 2 * size_t(stride)]};
 }
 
 // Starts loading the leaf (first, count): its run block, or its index triples (the vertices follow from those).

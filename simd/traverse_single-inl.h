@@ -133,17 +133,17 @@ HWY_INLINE uint32_t IntersectChildren(const Node& node, const SingleRay& r, floa
 }
 
 // Lanes of a leaf group whose edge functions hit exactly 0: the scalar test decides them (in double). `block`:
-// the leaf (first, count) in the run layout.
+// the leaf starting at triangle `first` in the run layout, runs `stride` floats apart.
 template <bool kAny, class D>
 HWY_NOINLINE bool RetestZeroLanesSingle(D d, hn::Mask<D> zero, const float* block, uint32_t first,
-                                        uint32_t count, size_t at, const SingleRay& r, float* t_max, Hit* hit) {
+                                        uint32_t stride, size_t at, const SingleRay& r, float* t_max, Hit* hit) {
   const WatertightRay wr = r.watertight();  // built here, off the hot path
   bool found = false;
   for (uint32_t bits = MaskBits(d, zero); bits != 0; bits &= bits - 1) {
     const uint32_t i = uint32_t(at + size_t(__builtin_ctz(bits)));
     TriangleHit th;
-    if (!intersect_triangle(wr, *t_max, BlockVertex(block, count, i - first, 0),
-                            BlockVertex(block, count, i - first, 1), BlockVertex(block, count, i - first, 2), &th))
+    if (!intersect_triangle(wr, *t_max, BlockVertex(block, stride, i - first, 0),
+                            BlockVertex(block, stride, i - first, 1), BlockVertex(block, stride, i - first, 2), &th))
       continue;
     if constexpr (kAny) return true;
     *t_max = th.t;
@@ -183,17 +183,17 @@ HWY_INLINE bool IntersectLeafGroup(D d, const float* block, uint32_t first, uint
     found = true;
   }
   if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero)) &&
-      RetestZeroLanesSingle<kAny>(d, lanes.zero, block, first, count, at, r, t_max, hit))
+      RetestZeroLanesSingle<kAny>(d, lanes.zero, block, first, uint32_t(v1 / 3), at, r, t_max, hit))
     found = true;
   return found;
 }
 
 // Leaf groups [i, count) of a leaf, after the first, one at a time. As IntersectLeaf.
 template <bool kAny, class D>
-HWY_INLINE bool IntersectLeafGroupsFrom(D d, const float* block, uint32_t first, uint32_t count, uint32_t i,
-                                        const float* px, const float* py, const float* pz, const SingleRay& r,
-                                        float* t_max, Hit* hit) {
-  const size_t v1 = 3 * size_t(count), v2 = 6 * size_t(count);
+HWY_INLINE bool IntersectLeafGroupsFrom(D d, const float* block, uint32_t first, uint32_t count, uint32_t stride,
+                                        uint32_t i, const float* px, const float* py, const float* pz,
+                                        const SingleRay& r, float* t_max, Hit* hit) {
+  const size_t v1 = 3 * size_t(stride), v2 = 6 * size_t(stride);
   bool found = false;
   for (; i < count; i += uint32_t(hn::Lanes(d))) {
     if (IntersectLeafGroup<kAny>(d, block, first, count, i, px, py, pz, v1, v2, r, t_max, hit)) {
@@ -209,10 +209,11 @@ HWY_INLINE bool IntersectLeafGroupsFrom(D d, const float* block, uint32_t first,
 // stack for it at every leaf. Out of line: +3 to +6 % on diffuse rays (bunny to bunny-16m and the dragon;
 // in-process A/B, medians of 7, 2026-11-23).
 template <bool kAny, class D>
-HWY_NOINLINE bool IntersectLeafRest(D d, const float* block, uint32_t first, uint32_t count,
+HWY_NOINLINE bool IntersectLeafRest(D d, const float* block, uint32_t first, uint32_t count, uint32_t stride,
                                     const float* px, const float* py, const float* pz, const SingleRay& r,
                                     float* t_max, Hit* hit) {
-  return IntersectLeafGroupsFrom<kAny>(d, block, first, count, uint32_t(hn::Lanes(d)), px, py, pz, r, t_max, hit);
+  return IntersectLeafGroupsFrom<kAny>(d, block, first, count, stride, uint32_t(hn::Lanes(d)), px, py, pz, r, t_max,
+                                       hit);
 }
 
 // Tests leaf triangles [first, first + count) (lanes = triangles) of the leaf a child reference (less kLeafFlag)
@@ -224,12 +225,13 @@ HWY_INLINE bool IntersectLeaf(const Leaves& tris, uint32_t leaf, uint32_t count,
                               float* t_max, Hit* hit, float* buffer) {
   const hn::CappedTag<float, 8> d;
   const uint32_t L = uint32_t(hn::Lanes(d));
-  // Run 3 * vertex + axis of the leaf starts at base + (3 * vertex + axis) * count: the ray's permuted axes pick
-  // vertex 0's three runs, and vertices 1 and 2 lie 3 * count and 6 * count floats further (three multiplies per
-  // leaf, and the rest fits x86 addressing modes).
-  const float* const base = LeafBlock(tris, r.leaf_data, leaf, count, buffer);
+  // Run 3 * vertex + axis of the leaf starts at base + (3 * vertex + axis) * stride (the count, or a decoded
+  // leaf's vector length): the ray's permuted axes pick vertex 0's three runs, and vertices 1 and 2 lie 3 * stride
+  // and 6 * stride floats further (three multiplies per leaf, and the rest fits x86 addressing modes).
+  uint32_t stride = count;
+  const float* const base = LeafBlock(tris, r.leaf_data, leaf, count, buffer, &stride);
   const uint32_t first = LeafFirst(tris, leaf);
-  const size_t c = count, v1 = 3 * c, v2 = 6 * c;
+  const size_t c = stride, v1 = 3 * c, v2 = 6 * c;
   const float* const px = base + size_t(r.k(0)) * c;
   const float* const py = base + size_t(r.k(1)) * c;
   const float* const pz = base + size_t(r.k(2)) * c;
@@ -239,9 +241,9 @@ HWY_INLINE bool IntersectLeaf(const Leaves& tris, uint32_t leaf, uint32_t count,
   if (HWY_LIKELY(count <= L)) return found;
   bool more;
   if constexpr (hn::MaxLanes(decltype(d)()) >= 8) {
-    more = IntersectLeafRest<kAny>(d, base, first, count, px, py, pz, r, t_max, hit);
+    more = IntersectLeafRest<kAny>(d, base, first, count, stride, px, py, pz, r, t_max, hit);
   } else {
-    more = IntersectLeafGroupsFrom<kAny>(d, base, first, count, L, px, py, pz, r, t_max, hit);
+    more = IntersectLeafGroupsFrom<kAny>(d, base, first, count, stride, L, px, py, pz, r, t_max, hit);
   }
   return found || more;
 }
