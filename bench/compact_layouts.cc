@@ -12,10 +12,8 @@ const char* layout_name(Layout l) {
   switch (l) {
     case Layout::kDefault: return "default";
     case Layout::kQuantNodes: return "quant-nodes";
-    case Layout::kIndexedLeaves: return "indexed-leaves";
-    case Layout::kCompact: return "compact";
     case Layout::kPackedLeaves: return "packed-leaves";
-    case Layout::kCompactPacked: return "compact-packed";
+    case Layout::kCompact: return "compact";
   }
   return "?";
 }
@@ -36,7 +34,6 @@ CompactAccel build_compact(const TorteAccel<8>& a, const TriangleMesh& mesh) {
   const uint32_t first = 0;
   const std::span<const TriangleMesh> meshes(&mesh, 1);
   const std::span<const uint32_t> mesh_first(&first, 1);
-  c.indexed = make_indexed_leaves(a.bvh.prim_indices, meshes, mesh_first);
   c.wide_packed = copy_of(a.bvh);
   c.packed = make_packed_leaves(c.wide_packed, meshes, mesh_first);
   c.quant_packed = quantize(copy_of(c.wide_packed));
@@ -44,12 +41,10 @@ CompactAccel build_compact(const TorteAccel<8>& a, const TriangleMesh& mesh) {
 }
 
 double layout_bytes_per_triangle(Layout l, const TorteAccel<8>& a, const CompactAccel& c, size_t triangles) {
-  const bool quant = l == Layout::kQuantNodes || l == Layout::kCompact || l == Layout::kCompactPacked;
-  const bool indexed = l == Layout::kIndexedLeaves || l == Layout::kCompact;
-  const bool packed = l == Layout::kPackedLeaves || l == Layout::kCompactPacked;
+  const bool quant = l == Layout::kQuantNodes || l == Layout::kCompact;
+  const bool packed = l == Layout::kPackedLeaves || l == Layout::kCompact;
   const size_t nodes = quant ? c.quant.nodes.size() * sizeof(QuantNode) : a.bvh.nodes.size() * sizeof(WideNode<8>);
-  const size_t leaves =
-      indexed ? c.indexed.memory_bytes() : packed ? c.packed.memory_bytes() : a.leaves.memory_bytes();
+  const size_t leaves = packed ? c.packed.memory_bytes() : a.leaves.memory_bytes();
   return double(nodes + leaves + a.bvh.prim_indices.size() * sizeof(uint32_t)) / double(triangles);
 }
 
@@ -72,10 +67,8 @@ void trace_layout(Layout l, const TorteAccel<8>& a, const CompactAccel& c, const
   switch (l) {
     case Layout::kDefault: return trace_with(a.bvh, a.leaves, rays, n, hits, occluded, packet);
     case Layout::kQuantNodes: return trace_with(c.quant, a.leaves, rays, n, hits, occluded, packet);
-    case Layout::kIndexedLeaves: return trace_with(a.bvh, c.indexed, rays, n, hits, occluded, packet);
-    case Layout::kCompact: return trace_with(c.quant, c.indexed, rays, n, hits, occluded, packet);
     case Layout::kPackedLeaves: return trace_with(c.wide_packed, c.packed, rays, n, hits, occluded, packet);
-    case Layout::kCompactPacked: return trace_with(c.quant_packed, c.packed, rays, n, hits, occluded, packet);
+    case Layout::kCompact: return trace_with(c.quant_packed, c.packed, rays, n, hits, occluded, packet);
   }
 }
 

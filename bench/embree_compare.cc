@@ -26,7 +26,7 @@
 // --threads T > 1 everything is wall time, rays are split into chunks of 4096 over a TBB arena of T threads
 // (torte and Embree alike) and both builders are limited to T threads.
 //
-// --compact (width 8): the compact layouts (compact_layouts.h: quantised nodes, indexed leaves, both) traced
+// --compact (width 8): the compact layouts (compact_layouts.h: quantised nodes, packed leaves, both) traced
 // through the same workloads, timed interleaved with the default layout, one line per layout and workload:
 //   layout=<name> workload=<w> tris=<n> threads=<t> default_mrays=<x> layout_mrays=<y> ratio=<y/x>
 // with the layouts' bytes per triangle (nodes + leaves + prim_indices) on a '#' line per scene.

@@ -1,4 +1,4 @@
-// The compact layouts (accel/compact_bvh.h: quantised nodes, indexed leaves; accel/packed_leaves.h) through the SIMD kernels on every
+// The compact layouts (accel/compact_bvh.h: quantised nodes; accel/packed_leaves.h: packed leaves) through the SIMD kernels on every
 // Highway target compiled in and supported here: the same hits as the default layout and the scalar reference,
 // quantised boxes that always hold the exact ones, and no hit lost on rays grazing the boxes.
 #include <catch2/catch.hpp>
@@ -18,12 +18,11 @@ using torte::test::random_vec;
 
 namespace {
 
-// A tree over a soup in every layout: the default one (Tree<8>), its quantised nodes, its indexed leaves, and its
-// packed leaves under a copy of the default nodes and under quantised nodes (their leaf references rewritten).
+// A tree over a soup in every layout: the default one (Tree<8>), its quantised nodes, and its packed leaves under
+// a copy of the default nodes and under quantised nodes (their leaf references rewritten).
 struct Layouts {
   Tree<8> wide;
   CompactBvh quant;
-  IndexedLeaves indexed;
   WideBvh<8> wide_packed;
   CompactBvh quant_packed;
   PackedLeaves packed;
@@ -41,21 +40,17 @@ Layouts build_layouts(const Soup& soup, BvhBuildOptions options = {}) {
   Layouts l;
   l.wide = build<8>(soup, options);
   l.quant = quantize(copy_of(l.wide.bvh));
-  l.indexed = make_indexed_leaves(l.wide.bvh.prim_indices, soup);
   l.wide_packed = copy_of(l.wide.bvh);
   l.packed = make_packed_leaves(l.wide_packed, soup);
   l.quant_packed = quantize(copy_of(l.wide_packed));
   return l;
 }
 
-enum class Combo { kQuantTriangles, kQuantIndexed, kWideIndexed, kQuantPacked, kWidePacked };
-constexpr Combo kCombos[] = {Combo::kQuantTriangles, Combo::kQuantIndexed, Combo::kWideIndexed, Combo::kQuantPacked,
-                             Combo::kWidePacked};
+enum class Combo { kQuantTriangles, kQuantPacked, kWidePacked };
+constexpr Combo kCombos[] = {Combo::kQuantTriangles, Combo::kQuantPacked, Combo::kWidePacked};
 const char* combo_name(Combo c) {
   switch (c) {
     case Combo::kQuantTriangles: return "quantised nodes + triangle leaves";
-    case Combo::kQuantIndexed: return "quantised nodes + indexed leaves";
-    case Combo::kWideIndexed: return "default nodes + indexed leaves";
     case Combo::kQuantPacked: return "quantised nodes + packed leaves";
     case Combo::kWidePacked: return "default nodes + packed leaves";
   }
@@ -79,14 +74,12 @@ void trace(const Layouts& l, Combo c, const Rays& r, Mode m, size_t n, std::vect
   hits.assign(n, Hit{});
   occ.assign(n, 7);
   if (c == Combo::kQuantTriangles) trace_with(l.quant, l.wide.leaves, r, m, n, hits.data(), occ.data());
-  if (c == Combo::kQuantIndexed) trace_with(l.quant, l.indexed, r, m, n, hits.data(), occ.data());
-  if (c == Combo::kWideIndexed) trace_with(l.wide.bvh, l.indexed, r, m, n, hits.data(), occ.data());
   if (c == Combo::kQuantPacked) trace_with(l.quant_packed, l.packed, r, m, n, hits.data(), occ.data());
   if (c == Combo::kWidePacked) trace_with(l.wide_packed, l.packed, r, m, n, hits.data(), occ.data());
 }
 
 // Every combination in every mode against `e` (the scalar reference or brute force, in the soup's numbering).
-// Indexed or packed leaves under default nodes test the same vertices in the same order: their hits must equal
+// Packed leaves under default nodes test the same vertices in the same order: their hits must equal
 // the default layout's bit for bit. Quantised nodes visit leaves in another order: hits at equal t may differ.
 void check_layouts(const Layouts& l, const Soup& soup, const Rays& r, const Expected& e, size_t count) {
   for (Combo c : kCombos)
@@ -102,7 +95,7 @@ void check_layouts(const Layouts& l, const Soup& soup, const Rays& r, const Expe
         const Hit g = to_soup(l.wide, got[i]);
         if (!same_hit(e.hits[i], g, soup, r.ray(i)) && bad++ == 0) first_bad = describe(r.ray(i), e.hits[i], g);
         bad_any += occ[i] != e.occluded[i];
-        if (c == Combo::kWideIndexed || c == Combo::kWidePacked)
+        if (c == Combo::kWidePacked)
           unlike_default += got[i].prim != base[i].prim || got[i].t != base[i].t || got[i].b1 != base[i].b1;
       }
       INFO(first_bad);

@@ -1,7 +1,7 @@
 // Packed leaves: the compact layout's leaf triangles (accel/compact_bvh.h), each leaf one contiguous block that
 // carries its own de-duplicated vertices and 8-bit indices into them, so a kernel reads a leaf with no dependent
-// load (the indexed leaves of before waited on their index line, then on the vertex lines it named). About 19 B
-// per triangle where TriangleLeaves copy 36.
+// load (leaves of indices into shared vertices wait on the index line, then on the vertex lines it names). About
+// 19 B per triangle where TriangleLeaves copy 36.
 //
 // A block, in 4-byte words from PackedLeaves::data + offset (leaf child reference kLeafFlag | offset, which
 // make_packed_leaves writes into the tree in place of the first triangle):

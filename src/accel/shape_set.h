@@ -22,6 +22,7 @@
 #include "accel/bvh_build.h"
 #include "accel/compact_bvh.h"
 #include "accel/hit.h"
+#include "accel/packed_leaves.h"
 #include "accel/wide_bvh.h"
 #include "core/progress_counter.h"
 #include "geometry/mesh.h"
@@ -76,7 +77,7 @@ class ShapeSet {
   const CompactBvh& compact_bvh() const { return ctri_bvh_; }
   TriangleMemory triangle_memory() const {
     return {tri_bvh_.nodes.size() * sizeof(tri_bvh_.nodes[0]) + ctri_bvh_.nodes.size() * sizeof(QuantNode),
-            tri_leaves_.memory_bytes() + itri_leaves_.memory_bytes(),
+            tri_leaves_.memory_bytes() + ptri_leaves_.memory_bytes(),
             (tri_ref_.size() + mesh_first_.size()) * sizeof(uint32_t)};
   }
 
@@ -102,12 +103,12 @@ class ShapeSet {
   }
   // All triangles of all meshes in one wide BVH (SIMD kernels, simd/traverse.h); the few analytic shapes in a
   // scalar BVH2 of their own, traced after it with t_max clipped to the triangle hit. The default layout fills
-  // tri_bvh_ and tri_leaves_, the compact one ctri_bvh_ and itri_leaves_.
+  // tri_bvh_ and tri_leaves_, the compact one ctri_bvh_ and ptri_leaves_.
   BvhLayout layout_ = BvhLayout::kDefault;
   WideBvh<kDefaultBvhWidth> tri_bvh_;
   TriangleLeaves tri_leaves_;
   CompactBvh ctri_bvh_;
-  IndexedLeaves itri_leaves_;
+  PackedLeaves ptri_leaves_;
   Bvh2 quadric_bvh_;
   Bounds3f bounds_;
 };
