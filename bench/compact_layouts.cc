@@ -18,25 +18,15 @@ const char* layout_name(Layout l) {
   return "?";
 }
 
-namespace {
-WideBvh<8> copy_of(const WideBvh<8>& bvh) {
-  WideBvh<8> copy;
-  copy.nodes.assign(bvh.nodes.begin(), bvh.nodes.end());
-  copy.prim_indices.assign(bvh.prim_indices.begin(), bvh.prim_indices.end());
-  copy.bounds = bvh.bounds;
-  return copy;
-}
-}  // namespace
-
 CompactAccel build_compact(const TorteAccel<8>& a, const TriangleMesh& mesh) {
   CompactAccel c;
-  c.quant = quantize(copy_of(a.bvh));
+  c.quant = quantize(WideBvh<8>(a.bvh));  // copies: quantize consumes its tree
   const uint32_t first = 0;
   const std::span<const TriangleMesh> meshes(&mesh, 1);
   const std::span<const uint32_t> mesh_first(&first, 1);
-  c.wide_packed = copy_of(a.bvh);
+  c.wide_packed = a.bvh;
   c.packed = make_packed_leaves(c.wide_packed, meshes, mesh_first);
-  c.quant_packed = quantize(copy_of(c.wide_packed));
+  c.quant_packed = quantize(WideBvh<8>(c.wide_packed));
   return c;
 }
 

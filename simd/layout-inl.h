@@ -153,7 +153,7 @@ HWY_INLINE uint32_t DecodeLeaf(D d, const PackedLeaves& t, uint32_t offset, uint
 }
 HWY_INLINE const float* LeafBlock(const PackedLeaves& t, const float*, uint32_t offset, uint32_t count,
                                   float* buffer, uint32_t* stride) {
-  *stride = DecodeLeaf(hn::CappedTag<float, 16>(), t, offset, count, buffer);
+  *stride = DecodeLeaf(hn::CappedTag<float, 8>(), t, offset, count, buffer);  // 8 lanes: the kernels' groups
   return buffer;
 }
 
