@@ -12,7 +12,7 @@ const char* layout_name(Layout l) {
   switch (l) {
     case Layout::kDefault: return "default";
     case Layout::kQuantNodes: return "quant-nodes";
-    case Layout::kIndexedLeaves: return "indexed-leaves";
+    case Layout::kPackedLeaves: return "packed-leaves";
     case Layout::kCompact: return "compact";
   }
   return "?";
@@ -20,22 +20,21 @@ const char* layout_name(Layout l) {
 
 CompactAccel build_compact(const TorteAccel<8>& a, const TriangleMesh& mesh) {
   CompactAccel c;
-  WideBvh<8> copy;
-  copy.nodes.assign(a.bvh.nodes.begin(), a.bvh.nodes.end());
-  copy.prim_indices.assign(a.bvh.prim_indices.begin(), a.bvh.prim_indices.end());
-  copy.bounds = a.bvh.bounds;
-  c.quant = quantize(std::move(copy));
+  c.quant = quantize(WideBvh<8>(a.bvh));  // copies: quantize consumes its tree
   const uint32_t first = 0;
-  c.indexed = make_indexed_leaves(a.bvh.prim_indices, std::span<const TriangleMesh>(&mesh, 1),
-                                  std::span<const uint32_t>(&first, 1));
+  const std::span<const TriangleMesh> meshes(&mesh, 1);
+  const std::span<const uint32_t> mesh_first(&first, 1);
+  c.wide_packed = a.bvh;
+  c.packed = make_packed_leaves(c.wide_packed, meshes, mesh_first);
+  c.quant_packed = quantize(WideBvh<8>(c.wide_packed));
   return c;
 }
 
 double layout_bytes_per_triangle(Layout l, const TorteAccel<8>& a, const CompactAccel& c, size_t triangles) {
   const bool quant = l == Layout::kQuantNodes || l == Layout::kCompact;
-  const bool indexed = l == Layout::kIndexedLeaves || l == Layout::kCompact;
+  const bool packed = l == Layout::kPackedLeaves || l == Layout::kCompact;
   const size_t nodes = quant ? c.quant.nodes.size() * sizeof(QuantNode) : a.bvh.nodes.size() * sizeof(WideNode<8>);
-  const size_t leaves = indexed ? c.indexed.memory_bytes() : a.leaves.memory_bytes();
+  const size_t leaves = packed ? c.packed.memory_bytes() : a.leaves.memory_bytes();
   return double(nodes + leaves + a.bvh.prim_indices.size() * sizeof(uint32_t)) / double(triangles);
 }
 
@@ -58,8 +57,8 @@ void trace_layout(Layout l, const TorteAccel<8>& a, const CompactAccel& c, const
   switch (l) {
     case Layout::kDefault: return trace_with(a.bvh, a.leaves, rays, n, hits, occluded, packet);
     case Layout::kQuantNodes: return trace_with(c.quant, a.leaves, rays, n, hits, occluded, packet);
-    case Layout::kIndexedLeaves: return trace_with(a.bvh, c.indexed, rays, n, hits, occluded, packet);
-    case Layout::kCompact: return trace_with(c.quant, c.indexed, rays, n, hits, occluded, packet);
+    case Layout::kPackedLeaves: return trace_with(c.wide_packed, c.packed, rays, n, hits, occluded, packet);
+    case Layout::kCompact: return trace_with(c.quant_packed, c.packed, rays, n, hits, occluded, packet);
   }
 }
 

@@ -1,26 +1,30 @@
 // The compact triangle layouts (accel/compact_bvh.h) of a benchmark scene, for embree-compare --compact: the
-// default tree's nodes quantised, its leaves as indices into shared vertices, and both; traced through the same
-// kernels (simd/traverse.h) as the default layout, next to it, in the same run.
+// default tree's nodes quantised, its leaves packed with their own vertices (accel/packed_leaves.h), and both;
+// traced through the same kernels (simd/traverse.h) as the default layout, next to it, in the same run.
 #pragma once
 #include <cstddef>
 #include <cstdint>
 
 #include "accel/compact_bvh.h"
 #include "accel/hit.h"
+#include "accel/packed_leaves.h"
 #include "workloads.h"
 
 namespace torte::bench {
 
-enum class Layout { kDefault, kQuantNodes, kIndexedLeaves, kCompact };
-constexpr Layout kCompactLayouts[] = {Layout::kQuantNodes, Layout::kIndexedLeaves, Layout::kCompact};
-/// "default", "quant-nodes", "indexed-leaves", "compact" (both).
+enum class Layout { kDefault, kQuantNodes, kPackedLeaves, kCompact };
+constexpr Layout kCompactLayouts[] = {Layout::kQuantNodes, Layout::kPackedLeaves, Layout::kCompact};
+constexpr Layout kAllLayouts[] = {Layout::kDefault, Layout::kQuantNodes, Layout::kPackedLeaves, Layout::kCompact};
+/// "default", "quant-nodes", "packed-leaves", "compact" (both).
 const char* layout_name(Layout l);
 
-/// The compact parts of `a`'s tree over `mesh` (one mesh: the leaves own their triples and the vertices in order
-/// of first use, as a placed or several-mesh scene's do).
+/// The compact parts of `a`'s tree over `mesh`: its nodes quantised (with the default leaves), its packed leaves
+/// under a copy of its nodes and under quantised nodes (both with their leaf references rewritten).
 struct CompactAccel {
   CompactBvh quant;
-  IndexedLeaves indexed;
+  WideBvh<8> wide_packed;
+  CompactBvh quant_packed;
+  PackedLeaves packed;
 };
 CompactAccel build_compact(const TorteAccel<8>& a, const TriangleMesh& mesh);
 

@@ -26,7 +26,7 @@
 // --threads T > 1 everything is wall time, rays are split into chunks of 4096 over a TBB arena of T threads
 // (torte and Embree alike) and both builders are limited to T threads.
 //
-// --compact (width 8): the compact layouts (compact_layouts.h: quantised nodes, indexed leaves, both) traced
+// --compact (width 8): the compact layouts (compact_layouts.h: quantised nodes, packed leaves, both) traced
 // through the same workloads, timed interleaved with the default layout, one line per layout and workload:
 //   layout=<name> workload=<w> tris=<n> threads=<t> default_mrays=<x> layout_mrays=<y> ratio=<y/x>
 // with the layouts' bytes per triangle (nodes + leaves + prim_indices) on a '#' line per scene.
@@ -48,6 +48,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -309,10 +310,11 @@ void compare_workload(const char* name, const BenchScene& s, const Workload& w, 
   // Embree variants timed: [0] COHERENT context, [1] INCOHERENT (single rays: only the default, INCOHERENT).
   const bool try_coherent = packets && g_opt.embree_context != "incoherent";
   const bool try_incoherent = !packets || g_opt.embree_context != "coherent";
-  std::vector<double> tt, te[2], tl[3];
+  constexpr int kLayouts = int(std::size(kCompactLayouts));
+  std::vector<double> tt, te[2], tl[kLayouts];
   std::vector<Hit> layout_hits(compact && kind == Kind::Closest ? n : 0);
   std::vector<uint8_t> layout_occ(compact && kind == Kind::Any ? n : 0);
-  Check layout_check[3];
+  Check layout_check[kLayouts];
   auto run_layout = [&](int k) {  // the compact layouts, as run_torte runs the default one
     if constexpr (N == 8)
       for_rays(n, [&](size_t b, size_t e) {
@@ -325,7 +327,7 @@ void compare_workload(const char* name, const BenchScene& s, const Workload& w, 
     tt.push_back(time_traversal(run_torte));
     if (try_coherent) te[0].push_back(time_traversal([&] { run_embree(true); }));
     if (try_incoherent) te[1].push_back(time_traversal([&] { run_embree(false); }));
-    for (int k = 0; compact && k < 3; ++k) {
+    for (int k = 0; compact && k < kLayouts; ++k) {
       tl[k].push_back(time_traversal([&] { run_layout(k); }));
       if (r == 0)
         layout_check[k] = kind == Kind::Closest ? check_closest(w.ref, layout_hits.data(), n, kRelTol)
@@ -365,7 +367,7 @@ void compare_workload(const char* name, const BenchScene& s, const Workload& w, 
     std::printf("# %s: embree_mrays with the COHERENT context %.3f, INCOHERENT %.3f (0: not run)\n", name,
                 me_coherent, me_incoherent);
   report_check(name, vs_embree, vs_ref, embree_hits);
-  for (int k = 0; compact && k < 3; ++k) {
+  for (int k = 0; compact && k < kLayouts; ++k) {
     const double ml = double(n) / median(tl[k]) * 1e-6;
     std::printf("layout=%s workload=%s tris=%zu threads=%d default_mrays=%.3f layout_mrays=%.3f ratio=%.3f\n",
                 layout_name(kCompactLayouts[k]), name, s.triangles(), g_opt.threads, mt, ml, ml / mt);
@@ -432,7 +434,7 @@ void run_scene(RTCDevice dev, const BenchScene& s) {
     if (g_opt.compact) {
       compact = std::make_unique<CompactAccel>(build_compact(accel, mesh));
       std::printf("# layouts: bytes/triangle (nodes + leaves + prim_indices; mesh excluded):");
-      for (Layout l : {Layout::kDefault, Layout::kQuantNodes, Layout::kIndexedLeaves, Layout::kCompact})
+      for (Layout l : kAllLayouts)
         std::printf(" %s %.1f", layout_name(l), layout_bytes_per_triangle(l, accel, *compact, tris));
       std::printf("\n");
     }

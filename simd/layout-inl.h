@@ -2,8 +2,8 @@
 // templates over the node type and the leaf type, and reach a node's bounds and a leaf's triangles only through
 // the functions here. A WideNode's planes are loaded as they lie; a QuantNode's are dequantised into registers
 // (origin + q * scale, exact in the product so fused and unfused targets agree), after which the same slab tests
-// run. A TriangleLeaves leaf is tested in place; an IndexedLeaves leaf is first gathered into the same run layout
-// (nine runs of `count` floats, wide_bvh.h) in a buffer on the stack, which the same triangle tests then read.
+// run. A TriangleLeaves leaf is tested in place; a PackedLeaves leaf is first decoded into the same run layout
+// (nine runs, wide_bvh.h) in a buffer on the stack, which the same triangle tests then read.
 // Include after traverse-inl.h (per-target part) inside a foreach_target file compiled without FMA contraction.
 
 // Per-target include guard (Highway's pattern).
@@ -21,6 +21,7 @@
 #include <type_traits>
 
 #include "accel/compact_bvh.h"
+#include "accel/packed_leaves.h"
 #include "accel/wide_bvh.h"
 #include "traverse-inl.h"
 
@@ -81,94 +82,143 @@ constexpr size_t kMaxLeafTriangles = 16;  // BvhBuildOptions::max_leaf_size's ha
 constexpr size_t kLeafBufferFloats = 9 * kMaxLeafTriangles + 16;
 
 template <class Leaves>
-constexpr bool kGathersLeaves = !std::is_same_v<Leaves, TriangleLeaves>;
+constexpr bool kDecodesLeaves = !std::is_same_v<Leaves, TriangleLeaves>;
 
-// The leaf (first, count) in the run layout: in place for TriangleLeaves (from `leaf_data`, its data), else
-// gathered into `buffer` (kLeafBufferFloats). Every lane a kernel loads from a run (up to 8 lanes from any
-// position inside it) is then a written float: a leaf of one lane group is written run after run, each store's
-// lanes past the run landing in the next run before that is written (lanes past the leaf repeat its last
-// triangle); a longer leaf's partial groups are stored masked and the floats after the last run are zeroed.
+// The leaf (first, count) in the run layout, runs *stride floats apart (the caller sets it to count; a decoded
+// leaf may widen it): in place for TriangleLeaves (from `leaf_data`, its data), else decoded into `buffer`
+// (kLeafBufferFloats). Every lane a kernel loads from a run (up to 8 lanes from a lane group's start) is then a
+// written float: a leaf of one lane group is one whole vector per run; a longer leaf's runs are `count` apart,
+// its partial groups stored masked and the floats after the last run zeroed.
 HWY_INLINE const float* LeafBlock(const TriangleLeaves&, const float* leaf_data, uint32_t first, uint32_t,
-                                  float*) {
+                                  float*, uint32_t* /*stride: count*/) {
   return leaf_data + 9 * size_t(first);
 }
-// Gathering: per triangle and vertex one 4-float load (x, y, z and a float of the next vertex), and a 4x4
-// transpose per four triangles makes the x, y and z runs (two transposes side by side on 8-lane vectors).
-// Against 12 hardware gathers per leaf (3 of indices, 9 of coordinates): single rays 1.15 to 1.6 times faster
-// (AVX3, bench/RESULTS.md 2026-12-06).
+
+// Decoding a packed leaf block: per index run one byte load widened to int32 lanes, and per coordinate one table
+// lookup (TableLookupLanes: a permute across the lanes) into the block's coordinate runs loaded as vectors; two
+// tables and a blend when the leaf's vertices outnumber the lanes, hardware gathers when they outnumber two
+// vectors (leaves of many triangles sharing few vertices). Lanes past the leaf take its vertex 0.
+// A leaf of one vector's triangles takes runs of a whole vector each (stride L): every run is one store, which
+// the kernels' loads then read whole, where runs of `count` overlapping stores stall the loads spanning two
+// (store forwarding fails on them). Returns the stride.
 template <class D>
-HWY_INLINE void GatherLeaf(D d, const IndexedLeaves& t, uint32_t first, uint32_t count, float* buffer) {
+HWY_INLINE uint32_t DecodeLeaf(D d, const PackedLeaves& t, uint32_t offset, uint32_t count, float* buffer) {
   constexpr size_t L = hn::MaxLanes(D());
-  const uint32_t* const idx = t.idx + 3 * size_t(first);
-  const float* const xyz = t.xyz;
-  if constexpr (L == 8 || L == 4) {
-    const hn::CappedTag<float, 4> d4;
-    const hn::Repartition<double, decltype(d)> dd;
-    const uint32_t last = count - 1;
-    // Vertex k of triangle j (clamped to the leaf) as (x, y, z, junk).
-    const auto vertex = [&](uint32_t j, int k) {
-      return hn::LoadU(d4, xyz + 3 * size_t(idx[3 * size_t(j < last ? j : last) + size_t(k)]));
-    };
-    const bool one_group = count <= L;
+  const uint8_t* const b = t.bytes(offset);
+  const uint32_t nv = b[1];
+  const uint8_t* const idx = b + 2;
+  const float* const xyz = t.data.data() + offset + PackedLeaves::block_words(count, 0);
+  if constexpr (L == 1) {  // HWY_SCALAR: plain copies
+    for (uint32_t j = 0; j < count; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a) buffer[size_t(3 * k + a) * count + j] = xyz[a * nv + idx[k * count + j]];
+    buffer[9 * size_t(count)] = 0;
+    return count;
+  } else {
+    const hn::RebindToSigned<D> di;
+    const hn::Rebind<uint8_t, D> d8;
+    const bool one_group = count <= L, two = nv > L, gather = nv > 2 * L;
+    const uint32_t stride = one_group ? uint32_t(L) : count;
+    hn::Vec<D> lo[3], hi[3];
+    if (!gather)
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = hn::LoadU(d, xyz + a * nv);
+        hi[a] = two ? hn::LoadU(d, xyz + a * nv + L) : lo[a];
+      }
     for (uint32_t g = 0; g < count; g += uint32_t(L)) {
-      const auto mask = hn::FirstN(d, count - g);
+      const auto live = hn::FirstN(di, count - g);
       for (int k = 0; k < 3; ++k) {
-        hn::Vec<decltype(d)> r[4];
-        for (uint32_t i = 0; i < 4; ++i) {
-          if constexpr (L == 8) r[i] = hn::Combine(d, vertex(g + i + 4, k), vertex(g + i, k));
-          else r[i] = vertex(g + i, k);
+        const auto iv = hn::IfThenElseZero(live, hn::PromoteTo(di, hn::LoadU(d8, idx + k * count + g)));
+        hn::Vec<D> run[3];
+        if (HWY_UNLIKELY(gather)) {
+          for (int a = 0; a < 3; ++a) run[a] = hn::GatherIndex(d, xyz + a * nv, iv);
+        } else {
+          const auto in_hi = hn::RebindMask(d, hn::Gt(iv, hn::Set(di, int32_t(L - 1))));
+          const auto ind = hn::IndicesFromVec(d, hn::And(iv, hn::Set(di, int32_t(L - 1))));
+          for (int a = 0; a < 3; ++a) {
+            run[a] = hn::TableLookupLanes(lo[a], ind);
+            if (two) run[a] = hn::IfThenElse(in_hi, hn::TableLookupLanes(hi[a], ind), run[a]);
+          }
         }
-        const auto t0 = hn::BitCast(dd, hn::InterleaveLower(d, r[0], r[1]));  // x0 x1 y0 y1 (per 4 lanes)
-        const auto t1 = hn::BitCast(dd, hn::InterleaveUpper(d, r[0], r[1]));  // z0 z1 . .
-        const auto t2 = hn::BitCast(dd, hn::InterleaveLower(d, r[2], r[3]));  // x2 x3 y2 y3
-        const auto t3 = hn::BitCast(dd, hn::InterleaveUpper(d, r[2], r[3]));  // z2 z3 . .
-        const hn::Vec<decltype(d)> run[3] = {hn::BitCast(d, hn::InterleaveLower(dd, t0, t2)),
-                                             hn::BitCast(d, hn::InterleaveUpper(dd, t0, t2)),
-                                             hn::BitCast(d, hn::InterleaveLower(dd, t1, t3))};
         for (int a = 0; a < 3; ++a) {
-          float* const out = buffer + size_t(3 * k + a) * count + g;
+          float* const out = buffer + size_t(3 * k + a) * stride + g;
           if (one_group || g + L <= count) hn::StoreU(run[a], d, out);
-          else hn::BlendedStore(run[a], mask, d, out);
+          else hn::BlendedStore(run[a], hn::RebindMask(d, live), d, out);
         }
       }
     }
     if (!one_group) hn::StoreU(hn::Zero(d), d, buffer + 9 * size_t(count));
-  } else {  // one lane (HWY_SCALAR): plain copies
-    for (uint32_t j = 0; j < count; ++j)
-      for (int k = 0; k < 3; ++k)
-        for (int a = 0; a < 3; ++a) buffer[size_t(3 * k + a) * count + j] = xyz[3 * size_t(idx[3 * j + k]) + a];
-    buffer[9 * size_t(count)] = 0;
+    return stride;
   }
 }
-HWY_INLINE const float* LeafBlock(const IndexedLeaves& t, const float*, uint32_t first, uint32_t count,
-                                  float* buffer) {
-  GatherLeaf(hn::CappedTag<float, 8>(), t, first, count, buffer);
+HWY_INLINE const float* LeafBlock(const PackedLeaves& t, const float*, uint32_t offset, uint32_t count,
+                                  float* buffer, uint32_t* stride) {
+  *stride = DecodeLeaf(hn::CappedTag<float, 8>(), t, offset, count, buffer);  // 8 lanes: the kernels' groups
   return buffer;
 }
 
-// Vertex k of leaf triangle j (< count) of a leaf in the run layout.
-HWY_INLINE Vec3f BlockVertex(const float* block, uint32_t count, uint32_t j, int k) {
-  const size_t at = size_t(3 * k) * count + j;
-  return {block[at], block[at + count], block[at + 2 * size_t(count)]};
+// A packed leaf of at most one vector's triangles whose vertices fit two vectors, decoded straight into registers
+// for one ray (no store and reload): v[k][j] = vertex k's coordinate on axis axis[j] minus origin[j] (lane =
+// triangle; lanes past the leaf: vertex 0), the values the run layout's loads would give. False for other leaves.
+template <class D>
+HWY_INLINE bool PackedLeafInRegisters(D d, const PackedLeaves& t, uint32_t offset, uint32_t count,
+                                      const int (&axis)[3], const float (&origin)[3], hn::Vec<D> (&v)[3][3]) {
+  constexpr size_t L = hn::MaxLanes(D());
+  const uint8_t* const b = t.bytes(offset);
+  const uint32_t nv = b[1];
+  if (count > L || nv > 2 * L) return false;
+  const float* const xyz = t.data.data() + offset + PackedLeaves::block_words(count, 0);
+  const hn::RebindToSigned<D> di;
+  const hn::Rebind<uint8_t, D> d8;
+  const bool two = nv > L;
+  hn::Vec<D> lo[3], hi[3];
+  for (int j = 0; j < 3; ++j) {
+    lo[j] = hn::LoadU(d, xyz + axis[j] * nv);
+    hi[j] = two ? hn::LoadU(d, xyz + axis[j] * nv + L) : lo[j];
+  }
+  const auto live = hn::FirstN(di, count);
+  for (int k = 0; k < 3; ++k) {
+    const auto iv = hn::IfThenElseZero(live, hn::PromoteTo(di, hn::LoadU(d8, b + 2 + k * count)));
+    const auto in_hi = hn::RebindMask(d, hn::Gt(iv, hn::Set(di, int32_t(L - 1))));
+    const auto ind = hn::IndicesFromVec(d, hn::And(iv, hn::Set(di, int32_t(L - 1))));
+    for (int j = 0; j < 3; ++j) {
+      auto c = hn::TableLookupLanes(lo[j], ind);
+      if (two) c = hn::IfThenElse(in_hi, hn::TableLookupLanes(hi[j], ind), c);
+      v[k][j] = hn::Sub(c, hn::Set(d, origin[j]));
+    }
+  }
+  return true;
 }
 
-// Starts loading the leaf (first, count): its run block, or its index triples (the vertices follow from those).
+// The leaf-order index of the first triangle of the leaf a child reference (less kLeafFlag) names: the reference
+// itself, or a packed block's first word.
+HWY_INLINE uint32_t LeafFirst(const TriangleLeaves&, uint32_t leaf) { return leaf; }
+HWY_INLINE uint32_t LeafFirst(const PackedLeaves& t, uint32_t leaf) { return t.first(leaf); }
+
+// Vertex k of leaf triangle j (< count) of a leaf in the run layout, runs `stride` floats apart.
+HWY_INLINE Vec3f BlockVertex(const float* block, uint32_t stride, uint32_t j, int k) {
+  const size_t at = size_t(3 * k) * stride + j;
+  return {block[at], block[at + stride], block[at + 2 * size_t(stride)]};
+}
+
+// Starts loading the leaf (first, count): its run block, or its packed block.
 HWY_INLINE void PrefetchLeaf(const TriangleLeaves&, const float* leaf_data, uint32_t first, uint32_t count) {
   const char* p = reinterpret_cast<const char*>(leaf_data + 9 * size_t(first));
   const uintptr_t end = reinterpret_cast<uintptr_t>(p) + 36 * size_t(count);
   for (uintptr_t a = reinterpret_cast<uintptr_t>(p) & ~uintptr_t(63); a < end; a += 64)
     __builtin_prefetch(reinterpret_cast<const void*>(a));
 }
-HWY_INLINE void PrefetchLeaf(const IndexedLeaves& t, const float*, uint32_t first, uint32_t count) {
-  const char* p = reinterpret_cast<const char*>(t.idx + 3 * size_t(first));
-  const uintptr_t end = reinterpret_cast<uintptr_t>(p) + 12 * size_t(count);
+// A packed block's size is in its header: the lines of a typical one (about 19 bytes per triangle).
+HWY_INLINE void PrefetchLeaf(const PackedLeaves& t, const float*, uint32_t offset, uint32_t count) {
+  const char* p = reinterpret_cast<const char*>(t.data.data() + offset);
+  const uintptr_t end = reinterpret_cast<uintptr_t>(p) + 8 + 19 * size_t(count);
   for (uintptr_t a = reinterpret_cast<uintptr_t>(p) & ~uintptr_t(63); a < end; a += 64)
     __builtin_prefetch(reinterpret_cast<const void*>(a));
 }
 
 // Start of the leaf data the single-ray kernel keeps at hand (SingleRay::leaf_data).
 HWY_INLINE const float* LeafData(const TriangleLeaves& t) { return t.data.data(); }
-HWY_INLINE const float* LeafData(const IndexedLeaves&) { return nullptr; }
+HWY_INLINE const float* LeafData(const PackedLeaves&) { return nullptr; }
 
 }  // namespace
 }  // namespace torte::HWY_NAMESPACE

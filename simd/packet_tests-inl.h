@@ -67,7 +67,7 @@ HWY_INLINE uint32_t IntervalChildren(const float* nf, const Packet<P>& p, float*
   return bits;
 }
 
-// Triangles [g, g + 8) of the leaf (base, count) (leaf-order runs, traverse_single-inl.h) whose bounds the
+// Triangles [g, g + 8) of the leaf (base, count; runs `stride` floats apart, traverse_single-inl.h) whose bounds the
 // packet's interval may hit, as bits (lanes = triangles): IntervalSlab on each triangle's bounds, for origins
 // widened by a margin on both sides (p.tri_o_lo, p.tri_o_hi; the same as widening the bounds), so that no
 // triangle the watertight test would hit for a lane is skipped. That test is exact for vertices sheared in float,
@@ -75,7 +75,8 @@ HWY_INLINE uint32_t IntervalChildren(const float* nf, const Packet<P>& p, float*
 // is 2^-20 of the scene's extent plus the origin, twice what that takes, and the far bound t_hi is raised by
 // 2^-18 for the rounding of t.
 template <size_t P>
-HWY_INLINE uint32_t IntervalTriangles(const float* base, size_t count, size_t g, const Packet<P>& p) {
+HWY_INLINE uint32_t IntervalTriangles(const float* base, size_t count, size_t stride, size_t g,
+                                      const Packet<P>& p) {
   const hn::CappedTag<float, 8> d;
   const size_t L = hn::Lanes(d);  // 8, or fewer on narrow targets: lane groups
   const auto t_hi = hn::Set(d, p.t_hi * (1.0f + 0x1p-18f));
@@ -84,8 +85,8 @@ HWY_INLINE uint32_t IntervalTriangles(const float* base, size_t count, size_t g,
     auto t0 = hn::Zero(d), t1 = t_hi;
     for (int k = 0; k < 3; ++k) {
       if (!((p.interval_axes >> k) & 1)) continue;
-      const float* r = base + size_t(k) * count + h;  // vertex 0 on axis k; vertices 1 and 2 are 3 and 6 runs on
-      const auto a = hn::LoadU(d, r), b = hn::LoadU(d, r + 3 * count), c = hn::LoadU(d, r + 6 * count);
+      const float* r = base + size_t(k) * stride + h;  // vertex 0 on axis k; vertices 1 and 2 are 3 and 6 runs on
+      const auto a = hn::LoadU(d, r), b = hn::LoadU(d, r + 3 * stride), c = hn::LoadU(d, r + 6 * stride);
       const auto lo = hn::Min(a, hn::Min(b, c)), hi = hn::Max(a, hn::Max(b, c));
       const bool neg = p.i_hi[k] < 0;
       IntervalSlab(d, p, k, p.tri_o_lo[k], p.tri_o_hi[k], neg ? hi : lo, neg ? lo : hi, t0, t1);
@@ -187,12 +188,12 @@ HWY_INLINE uint32_t PacketChildren(const Node& node, const float* nf, const Pack
 }
 
 // Lanes whose edge functions hit exactly 0 against triangle i: decided by the scalar test (in double). `block`:
-// the leaf (first, count) in the run layout.
+// the leaf starting at triangle `first` in the run layout, runs `stride` floats apart.
 template <bool kAny, size_t P, class D>
 HWY_NOINLINE void RetestZeroLanes(D d, hn::Mask<D> zero, size_t g, const float* block, uint32_t first,
-                                  uint32_t count, uint32_t i, Packet<P>& p) {
-  const Vec3f p0 = BlockVertex(block, count, i - first, 0), p1 = BlockVertex(block, count, i - first, 1),
-              p2 = BlockVertex(block, count, i - first, 2);
+                                  uint32_t stride, uint32_t i, Packet<P>& p) {
+  const Vec3f p0 = BlockVertex(block, stride, i - first, 0), p1 = BlockVertex(block, stride, i - first, 1),
+              p2 = BlockVertex(block, stride, i - first, 2);
   for (uint32_t bits = MaskBits(d, zero); bits != 0; bits &= bits - 1) {
     const size_t lane = g + size_t(__builtin_ctz(bits));
     TriangleHit th;
@@ -216,12 +217,12 @@ HWY_INLINE V PermutedCoord(D d, const Packet<P>& p, int k, size_t g, float x, fl
   return hn::IfThenElse(is0, hn::Set(d, x), hn::IfThenElse(is1, hn::Set(d, y), hn::Set(d, z)));
 }
 
-// Tests leaf triangle i (leaf-order index; at = i - first) of the leaf (first, count), in the run layout at
-// `base`, against the packet's lanes (lanes = rays). `run`: when the packet has one axis permutation, the leaf's
+// Tests leaf triangle i (leaf-order index; at = i - first) of the leaf starting at `first`, in the run layout at
+// `base` (runs `stride` floats apart), against the packet's lanes (lanes = rays). `run`: when the packet has one axis permutation, the leaf's
 // runs per vertex and permuted axis. Closest hit: lanes keep the closest hit (t_max shrinks). Any hit: hit lanes
 // are retired (t_max = -inf). Returns false when no lane can have been hit.
 template <bool kAny, size_t P>
-HWY_INLINE bool PacketTriangle(const float* base, uint32_t first, uint32_t count, uint32_t at,
+HWY_INLINE bool PacketTriangle(const float* base, uint32_t first, uint32_t stride, uint32_t at,
                                const float* const (&run)[3][3], uint32_t lanes, Packet<P>& p) {
   const hn::CappedTag<float, P> d;
   const hn::RebindToUnsigned<decltype(d)> du;
@@ -243,8 +244,8 @@ HWY_INLINE bool PacketTriangle(const float* base, uint32_t first, uint32_t count
         a[k][2] = hn::Sub(hn::Set(d, run[k][2][at]), okz);
       } else {
         const float* const t = base + at;
-        const float x = t[size_t(3 * k) * count], y = t[size_t(3 * k + 1) * count];
-        const float z = t[size_t(3 * k + 2) * count];
+        const float x = t[size_t(3 * k) * stride], y = t[size_t(3 * k + 1) * stride];
+        const float z = t[size_t(3 * k + 2) * stride];
         a[k][0] = hn::Sub(PermutedCoord(d, p, 0, g, x, y, z), okx);
         a[k][1] = hn::Sub(PermutedCoord(d, p, 1, g, x, y, z), oky);
         a[k][2] = hn::Sub(PermutedCoord(d, p, 2, g, x, y, z), okz);
@@ -272,36 +273,39 @@ HWY_INLINE bool PacketTriangle(const float* base, uint32_t first, uint32_t count
       hn::Store(hn::IfThenElse(hn::RebindMask(du, r.hit), hn::Set(du, i), prim), du, p.prim + g);
     }
     if (HWY_UNLIKELY(!hn::AllFalse(d, r.zero))) {
-      RetestZeroLanes<kAny>(d, r.zero, g, base, first, count, i, p);
+      RetestZeroLanes<kAny>(d, r.zero, g, base, first, stride, i, p);
       found = true;  // maybe a hit: the caller re-checks the lanes
     }
   }
   return found;
 }
 
-// Tests leaf triangles [first, first + count) against the packet's lanes, one triangle at a time (PacketTriangle).
-// Closest-hit packets of one octant first drop the triangles their interval misses (IntervalTriangles: on camera
-// packets three quarters of a leaf's triangles, which no lane would have hit). Returns false when no lane can have
-// been hit (the any-hit caller then skips its all-occluded check). Gathered leaves (LeafBlock) are gathered once
-// into `buffer` (kLeafBufferFloats) for all lanes.
+// Tests leaf triangles [first, first + count) of the leaf `leaf` names (LeafFirst) against the packet's lanes, one
+// triangle at a time (PacketTriangle). Closest-hit packets of one octant first drop the triangles their interval
+// misses (IntervalTriangles: on camera packets three quarters of a leaf's triangles, which no lane would have
+// hit). Returns false when no lane can have been hit (the any-hit caller then skips its all-occluded check).
+// Gathered or decoded leaves (LeafBlock) are put in the run layout once into `buffer` (kLeafBufferFloats) for all
+// lanes.
 template <bool kAny, size_t P, class Leaves>
-HWY_INLINE bool PacketLeaf(const Leaves& tris, uint32_t first, uint32_t count, uint32_t lanes, Packet<P>& p,
+HWY_INLINE bool PacketLeaf(const Leaves& tris, uint32_t leaf, uint32_t count, uint32_t lanes, Packet<P>& p,
                            float* buffer) {
-  const float* const base = LeafBlock(tris, LeafData(tris), first, count, buffer);
+  uint32_t stride = count;
+  const float* const base = LeafBlock(tris, LeafData(tris), leaf, count, buffer, &stride);
+  const uint32_t first = LeafFirst(tris, leaf);
   // One permutation for the packet (camera and shadow packets): vertex k's coordinate on permuted axis j is run
   // 3 k + axes[j] of the leaf, broadcast straight from the leaf (staging the nine floats per triangle on the stack
   // cost ~40 instructions per triangle, callgrind).
   const float* run[3][3] = {};  // set when same_axes (initialised: GCC cannot see that)
   if (p.same_axes)
     for (int k = 0; k < 3; ++k)
-      for (int j = 0; j < 3; ++j) run[k][j] = base + size_t(3 * k + p.axes[j]) * count;
+      for (int j = 0; j < 3; ++j) run[k][j] = base + size_t(3 * k + p.axes[j]) * stride;
   bool found = false;
   if (!kAny && p.same_octant) {
     for (uint32_t g = 0; g < count; g += 8)
-      for (uint32_t bits = IntervalTriangles(base, count, g, p); bits != 0; bits &= bits - 1)
-        found |= PacketTriangle<kAny>(base, first, count, g + uint32_t(__builtin_ctz(bits)), run, lanes, p);
+      for (uint32_t bits = IntervalTriangles(base, count, stride, g, p); bits != 0; bits &= bits - 1)
+        found |= PacketTriangle<kAny>(base, first, stride, g + uint32_t(__builtin_ctz(bits)), run, lanes, p);
   } else {
-    for (uint32_t at = 0; at < count; ++at) found |= PacketTriangle<kAny>(base, first, count, at, run, lanes, p);
+    for (uint32_t at = 0; at < count; ++at) found |= PacketTriangle<kAny>(base, first, stride, at, run, lanes, p);
   }
   return found;
 }

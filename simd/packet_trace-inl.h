@@ -114,11 +114,11 @@ void TracePacket(const Tree& bvh, const float extent[3], const Leaves& tris, Pac
   // hand-over they cost ~150 instructions each).
   RayBlock block;
   bool block_ready = false;
-  // A QuantNode's planes dequantised (NodePlanes) and a gathered leaf (LeafBlock); the default layout reads both
+  // A QuantNode's planes dequantised (NodePlanes) and a decoded leaf (LeafBlock); the default layout reads both
   // in place and keeps neither.
   constexpr bool kQuant = !std::is_same_v<Node, WideNode<N>>;
   alignas(kQuant ? 64 : 4) float planes[kQuant ? 6 * N : 1];
-  alignas(kGathersLeaves<Leaves> ? 64 : 4) float leaf_buffer[kGathersLeaves<Leaves> ? kLeafBufferFloats : 1];
+  alignas(kDecodesLeaves<Leaves> ? 64 : 4) float leaf_buffer[kDecodesLeaves<Leaves> ? kLeafBufferFloats : 1];
   if (!kAny && p.same_octant) {  // IntervalTriangles' margin (see there)
     float o_max = 0;
     for (int k = 0; k < 3; ++k) o_max = std::fmax(o_max, std::fmax(std::fabs(p.o_lo[k]), std::fabs(p.o_hi[k])));

@@ -26,6 +26,7 @@
 
 #include "accel/compact_bvh.h"
 #include "accel/hit.h"
+#include "accel/packed_leaves.h"
 #include "accel/wide_bvh.h"
 
 namespace torte {
@@ -53,8 +54,8 @@ void intersect_any_packets(const WideBvh<4>& bvh, const TriangleLeaves& tris, co
 void intersect_any_packets(const WideBvh<8>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                            uint8_t* occluded, int packet_size = 8);
 
-// The compact layouts (accel/compact_bvh.h): quantised nodes (CompactBvh) with either leaf type, or the default
-// nodes with indexed leaves. The same kernels and semantics (hits in the same leaf order); packet_size as above.
+// The compact layouts (accel/compact_bvh.h, accel/packed_leaves.h): quantised nodes (CompactBvh) with either leaf
+// type, or the default nodes with packed leaves (a tree whose leaf references make_packed_leaves rewrote). The same kernels and semantics (hits in the same leaf order); packet_size as above.
 #define TORTE_COMPACT_TRAVERSAL(Tree, Leaves)                                                                      \
   void intersect_closest(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, Hit* hits);        \
   void intersect_any(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, uint8_t* occluded);    \
@@ -63,8 +64,8 @@ void intersect_any_packets(const WideBvh<8>& bvh, const TriangleLeaves& tris, co
   void intersect_any_packets(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count,                \
                              uint8_t* occluded, int packet_size = 8);
 TORTE_COMPACT_TRAVERSAL(CompactBvh, TriangleLeaves)
-TORTE_COMPACT_TRAVERSAL(CompactBvh, IndexedLeaves)
-TORTE_COMPACT_TRAVERSAL(WideBvh<8>, IndexedLeaves)
+TORTE_COMPACT_TRAVERSAL(CompactBvh, PackedLeaves)
+TORTE_COMPACT_TRAVERSAL(WideBvh<8>, PackedLeaves)
 #undef TORTE_COMPACT_TRAVERSAL
 
 // Name of the Highway target the traversal kernels dispatch to on this CPU (e.g. "AVX3", "AVX2", "SCALAR").

@@ -1,6 +1,6 @@
 // Traversal of the compact layouts (accel/compact_bvh.h; see traverse.h for the semantics): the dispatch entry
 // points of the single-ray and packet kernels (traverse_single-inl.h, packet_trace-inl.h) instantiated for
-// quantised nodes and/or indexed leaves. A file of its own so the default layout's kernels compile as before.
+// quantised nodes and/or packed leaves. A file of its own so the default layout's kernels compile as before.
 
 // No FMA contraction (see traverse.cc): the watertight test must round exactly like the scalar one.
 #include "core/no_fp_contract.h"  // before every other include
@@ -29,7 +29,7 @@ HWY_BEFORE_NAMESPACE();
 namespace torte::HWY_NAMESPACE {
 
 // Exported per target (HWY_EXPORT needs plain function names): Q = quantised nodes, W = default nodes,
-// T = triangle leaves, I = indexed leaves; packet_size is 8 or 16 (checked by the callers below).
+// T = triangle leaves, P = packed leaves; packet_size is 8 or 16 (checked by the callers below).
 #define TORTE_COMPACT_KERNELS(Name, Tree, Leaves)                                                              \
   void ClosestSingle##Name(const Tree& b, const Leaves& t, const RaySoA& r, size_t n, Hit* h) {               \
     ClosestSingle(b, t, r, n, h);                                                                              \
@@ -44,8 +44,8 @@ namespace torte::HWY_NAMESPACE {
     ps == 16 ? AnyPackets<16>(b, t, r, n, o) : AnyPackets<8>(b, t, r, n, o);                                  \
   }
 TORTE_COMPACT_KERNELS(QT, CompactBvh, TriangleLeaves)
-TORTE_COMPACT_KERNELS(QI, CompactBvh, IndexedLeaves)
-TORTE_COMPACT_KERNELS(WI, WideBvh<8>, IndexedLeaves)
+TORTE_COMPACT_KERNELS(QP, CompactBvh, PackedLeaves)
+TORTE_COMPACT_KERNELS(WP, WideBvh<8>, PackedLeaves)
 #undef TORTE_COMPACT_KERNELS
 
 }  // namespace torte::HWY_NAMESPACE
@@ -83,8 +83,8 @@ void check_packet_size(int packet_size) {
     HWY_DYNAMIC_DISPATCH(AnyPackets##Name)(bvh, tris, rays, count, occ, packet_size);                          \
   }
 TORTE_COMPACT_ENTRIES(QT, CompactBvh, TriangleLeaves)
-TORTE_COMPACT_ENTRIES(QI, CompactBvh, IndexedLeaves)
-TORTE_COMPACT_ENTRIES(WI, WideBvh<8>, IndexedLeaves)
+TORTE_COMPACT_ENTRIES(QP, CompactBvh, PackedLeaves)
+TORTE_COMPACT_ENTRIES(WP, WideBvh<8>, PackedLeaves)
 #undef TORTE_COMPACT_ENTRIES
 
 }  // namespace torte

@@ -133,23 +133,48 @@ HWY_INLINE uint32_t IntersectChildren(const Node& node, const SingleRay& r, floa
 }
 
 // Lanes of a leaf group whose edge functions hit exactly 0: the scalar test decides them (in double). `block`:
-// the leaf (first, count) in the run layout.
+// the leaf starting at triangle `first` in the run layout, runs `stride` floats apart.
 template <bool kAny, class D>
 HWY_NOINLINE bool RetestZeroLanesSingle(D d, hn::Mask<D> zero, const float* block, uint32_t first,
-                                        uint32_t count, size_t at, const SingleRay& r, float* t_max, Hit* hit) {
+                                        uint32_t stride, size_t at, const SingleRay& r, float* t_max, Hit* hit) {
   const WatertightRay wr = r.watertight();  // built here, off the hot path
   bool found = false;
   for (uint32_t bits = MaskBits(d, zero); bits != 0; bits &= bits - 1) {
     const uint32_t i = uint32_t(at + size_t(__builtin_ctz(bits)));
     TriangleHit th;
-    if (!intersect_triangle(wr, *t_max, BlockVertex(block, count, i - first, 0),
-                            BlockVertex(block, count, i - first, 1), BlockVertex(block, count, i - first, 2), &th))
+    if (!intersect_triangle(wr, *t_max, BlockVertex(block, stride, i - first, 0),
+                            BlockVertex(block, stride, i - first, 1), BlockVertex(block, stride, i - first, 2), &th))
       continue;
     if constexpr (kAny) return true;
     *t_max = th.t;
     *hit = {th.t, uint32_t(i), th.b1, th.b2};
     found = true;
   }
+  return found;
+}
+
+// Leaf triangles [at, at + lanes) (leaf-order indices) against the ray, their vertices minus the ray's origin on
+// its permuted axes in v[vertex][axis] (lane = triangle), lanes [live, L) past the leaf. As IntersectLeaf; lanes
+// whose edge functions hit exactly 0 go to retest(zero mask).
+template <bool kAny, class D, class V, class Retest>
+HWY_INLINE bool TestLeafGroup(D d, const V (&v)[3][3], size_t at, uint32_t live, const SingleRay& r, float* t_max,
+                              Hit* hit, const Retest& retest) {
+  auto lanes = WatertightTest(d, v[0][0], v[0][1], v[0][2], v[1][0], v[1][1], v[1][2], v[2][0], v[2][1], v[2][2],
+                              hn::Set(d, r.s(0)), hn::Set(d, r.s(1)), hn::Set(d, r.s(2)), hn::Set(d, *t_max),
+                              hn::FirstN(d, live));
+  bool found = false;
+  if (!hn::AllFalse(d, lanes.hit)) ResolveHits(d, hn::Set(d, *t_max), lanes);
+  if (!hn::AllFalse(d, lanes.hit)) {
+    if constexpr (kAny) return true;
+    // Closest lane; on equal t the first in leaf order, as a sequential scalar loop would keep.
+    const auto t = hn::IfThenElse(lanes.hit, lanes.t, hn::Set(d, kInfinity));
+    const auto t_min = hn::MinOfLanes(d, t);
+    const size_t lane = size_t(hn::FindFirstTrue(d, hn::Eq(t, t_min)));
+    *t_max = hn::GetLane(t_min);
+    *hit = {*t_max, uint32_t(at + lane), hn::ExtractLane(lanes.b1, lane), hn::ExtractLane(lanes.b2, lane)};
+    found = true;
+  }
+  if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero)) && retest(lanes.zero)) found = true;
   return found;
 }
 
@@ -164,36 +189,23 @@ HWY_INLINE bool IntersectLeafGroup(D d, const float* block, uint32_t first, uint
   const auto okx = hn::Set(d, r.ok(0)), oky = hn::Set(d, r.ok(1)), okz = hn::Set(d, r.ok(2));
   // Loading L lanes from any position inside a leaf's run stays within the leaf data and its kLeafPadding tail.
   const size_t at = size_t(first) + i;
-  auto lanes = WatertightTest(
-      d, hn::Sub(hn::LoadU(d, px + i), okx), hn::Sub(hn::LoadU(d, py + i), oky), hn::Sub(hn::LoadU(d, pz + i), okz),
-      hn::Sub(hn::LoadU(d, px + v1 + i), okx), hn::Sub(hn::LoadU(d, py + v1 + i), oky),
-      hn::Sub(hn::LoadU(d, pz + v1 + i), okz), hn::Sub(hn::LoadU(d, px + v2 + i), okx),
-      hn::Sub(hn::LoadU(d, py + v2 + i), oky), hn::Sub(hn::LoadU(d, pz + v2 + i), okz), hn::Set(d, r.s(0)),
-      hn::Set(d, r.s(1)), hn::Set(d, r.s(2)), hn::Set(d, *t_max), hn::FirstN(d, count - i));
-  bool found = false;
-  if (!hn::AllFalse(d, lanes.hit)) ResolveHits(d, hn::Set(d, *t_max), lanes);
-  if (!hn::AllFalse(d, lanes.hit)) {
-    if constexpr (kAny) return true;
-    // Closest lane; on equal t the first in leaf order, as a sequential scalar loop would keep.
-    const auto t = hn::IfThenElse(lanes.hit, lanes.t, hn::Set(d, kInfinity));
-    const auto t_min = hn::MinOfLanes(d, t);
-    const size_t lane = size_t(hn::FindFirstTrue(d, hn::Eq(t, t_min)));
-    *t_max = hn::GetLane(t_min);
-    *hit = {*t_max, uint32_t(at + lane), hn::ExtractLane(lanes.b1, lane), hn::ExtractLane(lanes.b2, lane)};
-    found = true;
-  }
-  if (HWY_UNLIKELY(!hn::AllFalse(d, lanes.zero)) &&
-      RetestZeroLanesSingle<kAny>(d, lanes.zero, block, first, count, at, r, t_max, hit))
-    found = true;
-  return found;
+  const hn::Vec<D> v[3][3] = {
+      {hn::Sub(hn::LoadU(d, px + i), okx), hn::Sub(hn::LoadU(d, py + i), oky), hn::Sub(hn::LoadU(d, pz + i), okz)},
+      {hn::Sub(hn::LoadU(d, px + v1 + i), okx), hn::Sub(hn::LoadU(d, py + v1 + i), oky),
+       hn::Sub(hn::LoadU(d, pz + v1 + i), okz)},
+      {hn::Sub(hn::LoadU(d, px + v2 + i), okx), hn::Sub(hn::LoadU(d, py + v2 + i), oky),
+       hn::Sub(hn::LoadU(d, pz + v2 + i), okz)}};
+  return TestLeafGroup<kAny>(d, v, at, count - i, r, t_max, hit, [&](hn::Mask<D> zero) {
+    return RetestZeroLanesSingle<kAny>(d, zero, block, first, uint32_t(v1 / 3), at, r, t_max, hit);
+  });
 }
 
 // Leaf groups [i, count) of a leaf, after the first, one at a time. As IntersectLeaf.
 template <bool kAny, class D>
-HWY_INLINE bool IntersectLeafGroupsFrom(D d, const float* block, uint32_t first, uint32_t count, uint32_t i,
-                                        const float* px, const float* py, const float* pz, const SingleRay& r,
-                                        float* t_max, Hit* hit) {
-  const size_t v1 = 3 * size_t(count), v2 = 6 * size_t(count);
+HWY_INLINE bool IntersectLeafGroupsFrom(D d, const float* block, uint32_t first, uint32_t count, uint32_t stride,
+                                        uint32_t i, const float* px, const float* py, const float* pz,
+                                        const SingleRay& r, float* t_max, Hit* hit) {
+  const size_t v1 = 3 * size_t(stride), v2 = 6 * size_t(stride);
   bool found = false;
   for (; i < count; i += uint32_t(hn::Lanes(d))) {
     if (IntersectLeafGroup<kAny>(d, block, first, count, i, px, py, pz, v1, v2, r, t_max, hit)) {
@@ -209,25 +221,42 @@ HWY_INLINE bool IntersectLeafGroupsFrom(D d, const float* block, uint32_t first,
 // stack for it at every leaf. Out of line: +3 to +6 % on diffuse rays (bunny to bunny-16m and the dragon;
 // in-process A/B, medians of 7, 2026-11-23).
 template <bool kAny, class D>
-HWY_NOINLINE bool IntersectLeafRest(D d, const float* block, uint32_t first, uint32_t count,
+HWY_NOINLINE bool IntersectLeafRest(D d, const float* block, uint32_t first, uint32_t count, uint32_t stride,
                                     const float* px, const float* py, const float* pz, const SingleRay& r,
                                     float* t_max, Hit* hit) {
-  return IntersectLeafGroupsFrom<kAny>(d, block, first, count, uint32_t(hn::Lanes(d)), px, py, pz, r, t_max, hit);
+  return IntersectLeafGroupsFrom<kAny>(d, block, first, count, stride, uint32_t(hn::Lanes(d)), px, py, pz, r, t_max,
+                                       hit);
 }
 
-// Tests leaf triangles [first, first + count) (lanes = triangles). Closest hit: shrinks *t_max and fills *hit
-// with the closest hit closer than *t_max. Any hit: returns at the first hit. `buffer` (kLeafBufferFloats, for
-// leaves that are gathered first: LeafBlock).
+// Tests leaf triangles [first, first + count) (lanes = triangles) of the leaf a child reference (less kLeafFlag)
+// names (LeafFirst). Closest hit: shrinks *t_max and fills *hit with the closest hit closer than *t_max. Any hit:
+// returns at the first hit. `buffer` (kLeafBufferFloats, for leaves that are decoded first: LeafBlock).
 template <bool kAny, class Leaves>
-HWY_INLINE bool IntersectLeaf(const Leaves& tris, uint32_t first, uint32_t count, const SingleRay& r,
+HWY_INLINE bool IntersectLeaf(const Leaves& tris, uint32_t leaf, uint32_t count, const SingleRay& r,
                               float* t_max, Hit* hit, float* buffer) {
   const hn::CappedTag<float, 8> d;
   const uint32_t L = uint32_t(hn::Lanes(d));
-  // Run 3 * vertex + axis of the leaf starts at base + (3 * vertex + axis) * count: the ray's permuted axes pick
-  // vertex 0's three runs, and vertices 1 and 2 lie 3 * count and 6 * count floats further (three multiplies per
-  // leaf, and the rest fits x86 addressing modes).
-  const float* const base = LeafBlock(tris, r.leaf_data, first, count, buffer);
-  const size_t c = count, v1 = 3 * c, v2 = 6 * c;
+  if constexpr (kDecodesLeaves<Leaves> && hn::MaxLanes(decltype(d)()) >= 8) {
+    // Most packed leaves: decoded into registers, the run layout written only for a rare zero-edge retest.
+    hn::Vec<decltype(d)> v[3][3];
+    const int axis[3] = {r.k(0), r.k(1), r.k(2)};
+    const float origin[3] = {r.ok(0), r.ok(1), r.ok(2)};
+    if (HWY_LIKELY(PackedLeafInRegisters(d, tris, leaf, count, axis, origin, v))) {
+      const uint32_t first = LeafFirst(tris, leaf);
+      return TestLeafGroup<kAny>(d, v, first, count, r, t_max, hit, [&](hn::Mask<decltype(d)> zero) {
+        uint32_t stride = count;
+        const float* const base = LeafBlock(tris, r.leaf_data, leaf, count, buffer, &stride);
+        return RetestZeroLanesSingle<kAny>(d, zero, base, first, stride, first, r, t_max, hit);
+      });
+    }
+  }
+  // Run 3 * vertex + axis of the leaf starts at base + (3 * vertex + axis) * stride (the count, or a decoded
+  // leaf's vector length): the ray's permuted axes pick vertex 0's three runs, and vertices 1 and 2 lie 3 * stride
+  // and 6 * stride floats further (three multiplies per leaf, and the rest fits x86 addressing modes).
+  uint32_t stride = count;
+  const float* const base = LeafBlock(tris, r.leaf_data, leaf, count, buffer, &stride);
+  const uint32_t first = LeafFirst(tris, leaf);
+  const size_t c = stride, v1 = 3 * c, v2 = 6 * c;
   const float* const px = base + size_t(r.k(0)) * c;
   const float* const py = base + size_t(r.k(1)) * c;
   const float* const pz = base + size_t(r.k(2)) * c;
@@ -237,9 +266,9 @@ HWY_INLINE bool IntersectLeaf(const Leaves& tris, uint32_t first, uint32_t count
   if (HWY_LIKELY(count <= L)) return found;
   bool more;
   if constexpr (hn::MaxLanes(decltype(d)()) >= 8) {
-    more = IntersectLeafRest<kAny>(d, base, first, count, px, py, pz, r, t_max, hit);
+    more = IntersectLeafRest<kAny>(d, base, first, count, stride, px, py, pz, r, t_max, hit);
   } else {
-    more = IntersectLeafGroupsFrom<kAny>(d, base, first, count, L, px, py, pz, r, t_max, hit);
+    more = IntersectLeafGroupsFrom<kAny>(d, base, first, count, stride, L, px, py, pz, r, t_max, hit);
   }
   return found || more;
 }
@@ -277,8 +306,8 @@ HWY_INLINE bool TraceRayWith(const Tree& bvh, const Leaves& tris, const SingleRa
   int sp = 0;
   bool found = false;
   const Node* const nodes = bvh.nodes.data();  // held here: stores through hit may alias bvh.nodes
-  // Gathered leaves (LeafBlock) only: the default layout's kernel keeps no buffer.
-  alignas(kGathersLeaves<Leaves> ? 64 : 4) float buffer[kGathersLeaves<Leaves> ? kLeafBufferFloats : 1];
+  // Decoded leaves (LeafBlock) only: the default layout's kernel keeps no buffer.
+  alignas(kDecodesLeaves<Leaves> ? 64 : 4) float buffer[kDecodesLeaves<Leaves> ? kLeafBufferFloats : 1];
   for (;;) {
     if (ref & kLeafFlag) {
       if (IntersectLeaf<kAny>(tris, ref & ~kLeafFlag, count, r, &t_max, hit, buffer)) {

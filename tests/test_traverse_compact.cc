@@ -1,4 +1,4 @@
-// The compact layouts (accel/compact_bvh.h: quantised nodes, indexed leaves) through the SIMD kernels on every
+// The compact layouts (accel/compact_bvh.h: quantised nodes; accel/packed_leaves.h: packed leaves) through the SIMD kernels on every
 // Highway target compiled in and supported here: the same hits as the default layout and the scalar reference,
 // quantised boxes that always hold the exact ones, and no hit lost on rays grazing the boxes.
 #include <catch2/catch.hpp>
@@ -18,31 +18,35 @@ using torte::test::random_vec;
 
 namespace {
 
-// A tree over a soup in every layout: the default one (Tree<8>), its quantised nodes and its indexed leaves.
+// A tree over a soup in every layout: the default one (Tree<8>), its quantised nodes, and its packed leaves under
+// a copy of the default nodes and under quantised nodes (their leaf references rewritten).
 struct Layouts {
   Tree<8> wide;
   CompactBvh quant;
-  IndexedLeaves indexed;
+  WideBvh<8> wide_packed;
+  CompactBvh quant_packed;
+  PackedLeaves packed;
 };
 
 Layouts build_layouts(const Soup& soup, BvhBuildOptions options = {}) {
   Layouts l;
   l.wide = build<8>(soup, options);
-  WideBvh<8> copy;
-  copy.nodes.assign(l.wide.bvh.nodes.begin(), l.wide.bvh.nodes.end());
-  copy.prim_indices.assign(l.wide.bvh.prim_indices.begin(), l.wide.bvh.prim_indices.end());
-  copy.bounds = l.wide.bvh.bounds;
-  l.quant = quantize(std::move(copy));
-  l.indexed = make_indexed_leaves(l.wide.bvh.prim_indices, soup);
+  l.quant = quantize(WideBvh<8>(l.wide.bvh));  // copies: quantize consumes its tree
+  l.wide_packed = l.wide.bvh;
+  l.packed = make_packed_leaves(l.wide_packed, soup);
+  l.quant_packed = quantize(WideBvh<8>(l.wide_packed));
   return l;
 }
 
-enum class Combo { kQuantTriangles, kQuantIndexed, kWideIndexed };
-constexpr Combo kCombos[] = {Combo::kQuantTriangles, Combo::kQuantIndexed, Combo::kWideIndexed};
+enum class Combo { kQuantTriangles, kQuantPacked, kWidePacked };
+constexpr Combo kCombos[] = {Combo::kQuantTriangles, Combo::kQuantPacked, Combo::kWidePacked};
 const char* combo_name(Combo c) {
-  return c == Combo::kQuantTriangles ? "quantised nodes + triangle leaves"
-         : c == Combo::kQuantIndexed ? "quantised nodes + indexed leaves"
-                                     : "default nodes + indexed leaves";
+  switch (c) {
+    case Combo::kQuantTriangles: return "quantised nodes + triangle leaves";
+    case Combo::kQuantPacked: return "quantised nodes + packed leaves";
+    case Combo::kWidePacked: return "default nodes + packed leaves";
+  }
+  return "?";
 }
 
 template <class Tree, class Leaves>
@@ -62,13 +66,13 @@ void trace(const Layouts& l, Combo c, const Rays& r, Mode m, size_t n, std::vect
   hits.assign(n, Hit{});
   occ.assign(n, 7);
   if (c == Combo::kQuantTriangles) trace_with(l.quant, l.wide.leaves, r, m, n, hits.data(), occ.data());
-  if (c == Combo::kQuantIndexed) trace_with(l.quant, l.indexed, r, m, n, hits.data(), occ.data());
-  if (c == Combo::kWideIndexed) trace_with(l.wide.bvh, l.indexed, r, m, n, hits.data(), occ.data());
+  if (c == Combo::kQuantPacked) trace_with(l.quant_packed, l.packed, r, m, n, hits.data(), occ.data());
+  if (c == Combo::kWidePacked) trace_with(l.wide_packed, l.packed, r, m, n, hits.data(), occ.data());
 }
 
 // Every combination in every mode against `e` (the scalar reference or brute force, in the soup's numbering).
-// Indexed leaves under default nodes test the same vertices in the same order: their hits must equal the
-// default layout's bit for bit. Quantised nodes visit leaves in another order: hits at equal t may differ.
+// Packed leaves under default nodes test the same vertices in the same order: their hits must equal
+// the default layout's bit for bit. Quantised nodes visit leaves in another order: hits at equal t may differ.
 void check_layouts(const Layouts& l, const Soup& soup, const Rays& r, const Expected& e, size_t count) {
   for (Combo c : kCombos)
     for (Mode m : kModes) {
@@ -83,7 +87,7 @@ void check_layouts(const Layouts& l, const Soup& soup, const Rays& r, const Expe
         const Hit g = to_soup(l.wide, got[i]);
         if (!same_hit(e.hits[i], g, soup, r.ray(i)) && bad++ == 0) first_bad = describe(r.ray(i), e.hits[i], g);
         bad_any += occ[i] != e.occluded[i];
-        if (c == Combo::kWideIndexed)
+        if (c == Combo::kWidePacked)
           unlike_default += got[i].prim != base[i].prim || got[i].t != base[i].t || got[i].b1 != base[i].b1;
       }
       INFO(first_bad);
@@ -214,4 +218,127 @@ TEST_CASE("rays grazing quantised boxes, and big leaves, lose no hit the brute f
     const Layouts l = build_layouts(soup, options);
     for_each_target([&](const std::string&, bool) { check_layouts(l, soup, rays, e, rays.size()); });
   }
+}
+
+namespace {
+
+// Clusters far apart, each of `t` triangles over `u` distinct random points near its centre (triangle j takes
+// points 3j, 3j + 1, 3j + 2 modulo u, so every point is used when u <= 3t), which the build keeps in one leaf:
+// leaves whose vertex counts sit at the decoder's boundaries (8 and 16 lanes, one or two tables, gathers).
+void add_cluster(Soup& soup, Pcg32& rng, Vec3f centre, uint32_t t, uint32_t u) {
+  std::vector<Vec3f> points;
+  for (uint32_t i = 0; i < u; ++i) points.push_back(centre + random_direction(rng) * (0.2f + 0.8f * rng.next_float()));
+  for (uint32_t i = 0; i < 3 * t; ++i) soup.push_back(points[i % u]);
+}
+
+// (count, distinct vertices) of every block of `leaves`, walking them in order.
+std::vector<std::pair<uint32_t, uint32_t>> block_shapes(const PackedLeaves& leaves) {
+  std::vector<std::pair<uint32_t, uint32_t>> shapes;
+  for (size_t offset = 0, seen = 0; seen < leaves.size();) {
+    const uint8_t* b = leaves.bytes(uint32_t(offset));
+    shapes.emplace_back(b[0], b[1]);
+    seen += b[0];
+    offset += PackedLeaves::block_words(b[0], b[1]);
+  }
+  return shapes;
+}
+
+// Rays at random points of random triangles, from random directions.
+Rays rays_at(const Soup& soup, int count, uint64_t seed) {
+  Pcg32 rng(seed);
+  Rays rays;
+  for (int i = 0; i < count; ++i) {
+    const size_t t = 3 * (rng.next_u32() % (soup.size() / 3));
+    const float a = rng.next_float(), b = rng.next_float() * (1 - a);
+    const Vec3f target = soup[t] + (soup[t + 1] - soup[t]) * a + (soup[t + 2] - soup[t]) * b;
+    const Vec3f dir = random_direction(rng);
+    rays.add(target - dir * (2.0f + 3.0f * rng.next_float()), dir);
+  }
+  return rays;
+}
+
+}  // namespace
+
+TEST_CASE("packed leaves hold every triangle's vertices, shared within a leaf", "[traverse][compact][memory]") {
+  const Soup sphere = icosphere(4, {0.2f, 0.1f, 0.3f}, 1.0f);
+  const Layouts l = build_layouts(sphere);
+  const size_t n = sphere.size() / 3;
+  REQUIRE(l.packed.size() == n);
+  for (uint32_t i = 0; i < n; ++i) {
+    Vec3f p[3];
+    l.packed.triangle(i, p);
+    for (int k = 0; k < 3; ++k) REQUIRE(p[k] == sphere[3 * size_t(l.wide.bvh.prim_indices[i]) + size_t(k)]);
+  }
+  size_t vertices = 0;
+  for (const auto& shape : block_shapes(l.packed)) {
+    vertices += shape.second;
+    CHECK(shape.second <= 3 * shape.first);
+  }
+  // A closed mesh has about half a vertex per triangle; a leaf of 8 neighbours about 1.2 (their border).
+  INFO(double(vertices) / double(n) << " vertices per triangle, " << double(l.packed.memory_bytes()) / double(n)
+                                    << " B/tri");
+  CHECK(double(vertices) / double(n) < 1.6);
+  CHECK(double(l.packed.memory_bytes()) / double(n) <= 24.0);  // TriangleLeaves: 36
+}
+
+TEST_CASE("packed leaves: one triangle, full leaves, vertex counts at every decoder boundary, degenerate triangles",
+          "[traverse][compact]") {
+  Pcg32 rng(61);
+  Soup soup;
+  // (triangles, distinct vertices): fans of shared vertices, the table boundaries for 4 and 8 lanes, and
+  // full leaves whose vertices are all distinct (48: gathers everywhere).
+  const std::pair<uint32_t, uint32_t> shapes[] = {{1, 3},  {2, 4},   {6, 8},   {7, 9},   {14, 16}, {15, 17},
+                                                  {16, 16}, {16, 17}, {16, 32}, {16, 33}, {16, 48}, {5, 15}};
+  // In one row, each cluster between two full ones: a leaf holding two clusters would exceed 16 triangles, so
+  // every cluster is a leaf of its own.
+  float x = 0;
+  const auto separated = [&](uint32_t t, uint32_t u) {
+    add_cluster(soup, rng, Vec3f(x, 0, 0), t, u);
+    add_cluster(soup, rng, Vec3f(x + 12, 0, 0), 16, 48);
+    x += 24;
+  };
+  for (int rep = 0; rep < 6; ++rep)
+    for (const auto& shape : shapes) separated(shape.first, shape.second);
+  // Degenerate triangles beside good ones: a point, a segment, a repeated vertex.
+  for (int rep = 0; rep < 6; ++rep) {
+    separated(6, 9);
+    const size_t at = soup.size() - 3 * 16;  // after the 6-triangle cluster
+    const Vec3f a = soup[at - 1], b = soup[at - 2];
+    soup.insert(soup.begin() + std::ptrdiff_t(at), {a, a, a, a, b, (a + b) * 0.5f, a, a, b});
+  }
+  const BvhBuildOptions big_leaves{.max_leaf_size = 16, .leaf_block_size = 16};
+  const Layouts l = build_layouts(soup, big_leaves);
+  // The build keeps each cluster in one leaf: every shape above occurs.
+  const auto got = block_shapes(l.packed);
+  for (const auto& shape : shapes) {
+    INFO("leaf of " << shape.first << " triangles over " << shape.second << " vertices");
+    CHECK(std::find(got.begin(), got.end(), shape) != got.end());
+  }
+  const Rays rays = rays_at(soup, 6000, 67);
+  const Expected e = expect_brute(soup, rays);
+  size_t hits = 0;
+  for (const Hit& h : e.hits) hits += h.prim != kNoHit;
+  REQUIRE(hits > rays.size() / 2);
+  for_each_target([&](const std::string&, bool) { check_layouts(l, soup, rays, e, rays.size()); });
+
+  // A scene of one triangle: a leaf of one.
+  const Soup one(soup.begin(), soup.begin() + 3);
+  const Layouts lone = build_layouts(one);
+  REQUIRE(block_shapes(lone.packed) == std::vector<std::pair<uint32_t, uint32_t>>{{1, 3}});
+  const Rays one_rays = rays_at(one, 200, 71);
+  const Expected e1 = expect_brute(one, one_rays);
+  for_each_target([&](const std::string&, bool) { check_layouts(lone, one, one_rays, e1, one_rays.size()); });
+}
+
+TEST_CASE("packed leaves refuse leaves beyond 16 triangles", "[traverse][compact]") {
+  Soup soup;
+  Pcg32 rng(73);
+  add_cluster(soup, rng, Vec3f(0, 0, 0), 20, 60);
+  WideBvh<8> bvh;
+  bvh.nodes.resize(1);
+  WideNode<8>& root = bvh.nodes[0];
+  for (int c = 0; c < 8; ++c) root.child[c] = kEmptyChild, root.leaf_count[c] = 0;
+  root.child[0] = kLeafFlag, root.leaf_count[0] = 20;
+  for (uint32_t i = 0; i < 20; ++i) bvh.prim_indices.push_back(i);
+  CHECK_THROWS_WITH(make_packed_leaves(bvh, soup), Catch::Contains("at most 16"));
 }

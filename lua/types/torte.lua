@@ -32,7 +32,7 @@ torte.simd = {}
 torte.texture = {}
 torte.voxel = {}
 
----A new, empty scene (a `torte.scene` userdata with the methods `add`, `frame` and `stats`). The keys choose how its triangles are laid out for tracing: the default layout (8-wide nodes of float boxes, 6.8 bytes per triangle, and leaves that copy each triangle's vertices, 36) or the compact one (nodes whose child boxes are 8-bit offsets on a per-node grid, 3.4, and leaves that index shared vertices: 12 bytes per triangle, none for a scene of one mesh, which lends its own, plus 12 per vertex), slower to trace (`bench/RESULTS.md`, 2026-12-06). The summary after a render and `--stats` name the layout. `torte.render` takes the same keys for one render.
+---A new, empty scene (a `torte.scene` userdata with the methods `add`, `frame` and `stats`). The keys choose how its triangles are laid out for tracing: the default layout (8-wide nodes of float boxes, 6.8 bytes per triangle, and leaves that copy each triangle's vertices, 36) or the compact one (nodes whose child boxes are 8-bit offsets on a per-node grid, 3.4, and leaves that carry each leaf's distinct vertices once with 8-bit indices into them, about 19), slower to trace (`bench/RESULTS.md`, 2026-12-06). The summary after a render and `--stats` name the layout. `torte.render` takes the same keys for one render.
 ---@param args torte.scene.args
 ---@return torte.scene
 function torte.scene(args) end

@@ -1,5 +1,5 @@
 // How a scene's triangles are laid out for tracing: the default layout (WideNode<8> + TriangleLeaves, fastest)
-// or the compact one (QuantNode + IndexedLeaves, accel/compact_bvh.h), picked by hand or by a memory budget.
+// or the compact one (QuantNode + PackedLeaves, accel/compact_bvh.h), picked by hand or by a memory budget.
 #pragma once
 #include <cstdint>
 #include <string_view>

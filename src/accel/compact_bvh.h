@@ -4,24 +4,19 @@
 //   power-of-two scale), as in Ylitie, Karras & Laine 2017 ("Efficient incoherent ray traversal on GPUs through
 //   compressed wide BVHs"): 128 bytes for 8 children where WideNode<8> takes 256. Rounded conservatively (lo
 //   down, hi up, checked with the kernels' own arithmetic), so a dequantised box holds its child's box.
-// - IndexedLeaves: leaf triangles as three vertex indices (12 B/tri) into shared vertices, where TriangleLeaves
-//   copies 36 B/tri of positions; a set of one owned mesh borrows the mesh's own index triples (already in leaf
-//   order, shape_set.cc), so its leaves cost only the vertex copy (12 B/vertex, about 6 B/tri).
-// The kernels (simd/traverse.h) take any pairing of {WideBvh<8>, CompactBvh} with {TriangleLeaves, IndexedLeaves}.
+// - PackedLeaves (accel/packed_leaves.h): each leaf one block with its own de-duplicated vertices and 8-bit
+//   indices, about 19 B/tri where TriangleLeaves copy 36.
+// The kernels (simd/traverse.h) take quantised nodes with either leaf type, and packed leaves under either node
+// type.
 #pragma once
 #include <cstddef>
 #include <cstdint>
-#include <span>
-#include <vector>
 
 #include "accel/wide_bvh.h"
 #include "core/bounds.h"
 #include "core/huge_pages.h"
-#include "core/vec.h"
 
 namespace torte {
-
-struct TriangleMesh;
 
 // One node of 8 children. Child bounds: q[row][i] for rows lo_x, lo_y, lo_z, hi_x, hi_y, hi_z (the rows of
 // WideNode, in the same order, so the kernels' plane offsets index both), dequantised as origin[a] + q * scale[a]
@@ -56,45 +51,5 @@ inline float dequantize(const QuantNode& n, int a, uint32_t q) { return n.origin
 
 /// `wide` with every node quantised (moves prim_indices out of `wide` and frees its nodes).
 CompactBvh quantize(WideBvh<8>&& wide);
-
-// Leaf triangles as vertex indices: leaf-order triangle i has vertices idx[3 i + k] (k = 0, 1, 2), vertex v at
-// xyz[3 v, 3 v + 3). The vertices are always a copy owned here (x, y, z per vertex, then kPadding floats, so a
-// kernel may load 4 floats at any vertex); the triples are owned here too (owned_idx) or are a mesh's (see
-// make_indexed_leaves), which must then outlive these.
-//   Owned triples: 12 B/tri + 12 B/vertex; borrowing a mesh's triples: 12 B/vertex.
-struct IndexedLeaves {
-  static constexpr size_t kPadding = 4;
-  IndexedLeaves() = default;
-  IndexedLeaves(IndexedLeaves&&) = default;  // the buffers move with their pointers
-  IndexedLeaves& operator=(IndexedLeaves&&) = default;
-  IndexedLeaves(const IndexedLeaves&) = delete;
-  const uint32_t* idx = nullptr;
-  const float* xyz = nullptr;
-  size_t triangles = 0, vertices = 0;
-  HugePageVector<uint32_t> owned_idx;
-  HugePageVector<float> owned_xyz;
-  size_t size() const { return triangles; }
-  size_t memory_bytes() const { return owned_idx.size() * sizeof(uint32_t) + owned_xyz.size() * sizeof(float); }
-  Vec3f vertex(uint32_t i, int k) const {
-    const float* p = xyz + 3 * size_t(idx[3 * size_t(i) + size_t(k)]);
-    return {p[0], p[1], p[2]};
-  }
-  void triangle(uint32_t i, Vec3f p[3]) const {
-    for (int k = 0; k < 3; ++k) p[k] = vertex(i, k);
-  }
-};
-
-/// Indexed leaves of the tree whose leaf-order triangle i is input triangle prim_indices[i] (mesh m's triangle t
-/// being input triangle mesh_first[m] + t): triples of their own into a copy of the vertices the tree's triangles
-/// use, numbered in order of first use in leaf order (placed meshes' vertices in world space), so a leaf's
-/// vertices lie close together. Throws torte::Error beyond 2^32 - 1 vertices.
-IndexedLeaves make_indexed_leaves(std::span<const uint32_t> prim_indices, std::span<const TriangleMesh> meshes,
-                                  std::span<const uint32_t> mesh_first);
-/// Indexed leaves over the first `triangles` triples of `mesh` (one owned mesh whose triples are in leaf order):
-/// they point at the mesh's triples, which must stay, and copy its positions, which it may then release.
-IndexedLeaves make_indexed_leaves(size_t triangles, const TriangleMesh& mesh);
-/// Same for a triangle soup (three vertices per triangle in `vertices`, the caller's numbering), each triangle
-/// with three vertices of its own (tests).
-IndexedLeaves make_indexed_leaves(std::span<const uint32_t> prim_indices, std::span<const Vec3f> vertices);
 
 }  // namespace torte

@@ -16,7 +16,7 @@ void ShapeSet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadri
                      ProgressCounter* progress, BvhLayout layout) {
   if (layout == BvhLayout::kAuto) throw Error("internal: ShapeSet::build takes a resolved layout");
   layout_ = layout;
-  tri_leaves_ = {}, ctri_bvh_ = {}, itri_leaves_ = {};  // a rebuild in the other layout keeps none of these
+  tri_leaves_ = {}, ctri_bvh_ = {}, ptri_leaves_ = {};  // a rebuild in the other layout keeps none of these
   meshes_ = &meshes;
   quadrics_ = &quadrics;
   // The set's input numbering: mesh after mesh.
@@ -51,18 +51,16 @@ void ShapeSet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadri
   tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(input_triangles, bounds_of, options);
   report(input_triangles - tri_bvh_.prim_indices.size());  // triangles the tree left out (empty bounds)
   const std::span<const TriangleMesh> mesh_span(meshes);
-  // The compact layout's leaves borrow the triples of a lone owned mesh once they are in leaf order; otherwise
-  // they are made from the tree's order before store_in_leaf_order consumes it.
-  const bool borrow = meshes.size() == 1 && !meshes[0].placed();
+  // Either layout's leaves come from the tree's order before store_in_leaf_order consumes it; the compact one's
+  // rewrite the tree's leaf references (to their blocks) before its nodes are quantised.
   if (layout == BvhLayout::kDefault) {
     tri_leaves_ = make_triangle_leaves(tri_bvh_, mesh_span, mesh_first);
-  } else if (!borrow) {
-    itri_leaves_ = make_indexed_leaves(tri_bvh_.prim_indices, mesh_span, mesh_first);
+  } else {
+    ptri_leaves_ = make_packed_leaves(tri_bvh_, mesh_span, mesh_first);
   }
   report(input_triangles / 2);
   store_in_leaf_order(meshes, mesh_first);
   if (layout == BvhLayout::kCompact) {
-    if (borrow) itri_leaves_ = make_indexed_leaves(triangle_count_, meshes[0]);
     ctri_bvh_ = quantize(std::move(tri_bvh_));
     tri_bvh_ = {};
   }
@@ -195,9 +193,9 @@ bool ShapeSet::occluded_one(const Ray& ray) const {
 void ShapeSet::intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const {
   if (triangle_count() > 0 && layout_ == BvhLayout::kCompact) {
     if (kernel != TraceKernel::kSingle) {
-      intersect_closest_packets(ctri_bvh_, itri_leaves_, rays, count, hits, int(kernel));
+      intersect_closest_packets(ctri_bvh_, ptri_leaves_, rays, count, hits, int(kernel));
     } else {
-      intersect_closest(ctri_bvh_, itri_leaves_, rays, count, hits);
+      intersect_closest(ctri_bvh_, ptri_leaves_, rays, count, hits);
     }
   } else if (triangle_count() > 0) {
     if (kernel != TraceKernel::kSingle) {
@@ -230,9 +228,9 @@ void ShapeSet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) c
 void ShapeSet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const {
   if (triangle_count() > 0 && layout_ == BvhLayout::kCompact) {
     if (kernel != TraceKernel::kSingle) {
-      intersect_any_packets(ctri_bvh_, itri_leaves_, rays, count, blocked, int(kernel));
+      intersect_any_packets(ctri_bvh_, ptri_leaves_, rays, count, blocked, int(kernel));
     } else {
-      intersect_any(ctri_bvh_, itri_leaves_, rays, count, blocked);
+      intersect_any(ctri_bvh_, ptri_leaves_, rays, count, blocked);
     }
   } else if (triangle_count() > 0) {
     if (kernel != TraceKernel::kSingle) {
@@ -256,7 +254,7 @@ void ShapeSet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, Trac
 
 size_t ShapeSet::accel_bytes() const {
   return tri_bvh_.memory_bytes() + tri_leaves_.memory_bytes() + ctri_bvh_.memory_bytes() +
-         itri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
+         ptri_leaves_.memory_bytes() + quadric_bvh_.nodes().size() * sizeof(Bvh2Node) +
          quadric_bvh_.prim_indices().size() * sizeof(uint32_t) +
          tri_ref_.size() * sizeof(uint32_t) + mesh_first_.size() * sizeof(uint32_t);
 }
@@ -273,7 +271,7 @@ SurfaceHit ShapeSet::surface(const Hit& hit, uint32_t object_base) const {
   const TriangleMesh& mesh = (*meshes_)[ref.mesh];
   Vec3f p[3];
   if (layout_ == BvhLayout::kCompact) {
-    itri_leaves_.triangle(hit.prim, p);
+    ptri_leaves_.triangle(hit.prim, p);
   } else {
     tri_leaves_.triangle(hit.prim, p);
   }

@@ -7,9 +7,9 @@
 // 61.0 B/tri, checked by test_geometry_set.cc. Sets of several meshes, or of placed meshes (a scene's, which
 // share the script's arrays: TriangleMesh::make_placed), add 4 B/tri (each triangle's place in the meshes
 // concatenated) and keep only their world normals.
-// The compact layout (accel/compact_bvh.h, picked by accel_options.h) holds the dragon in 27.4 B/tri: quantised
-// nodes 3.4, leaves that borrow the mesh's leaf-order triples and copy its vertices 6.0, indices 12, normals 6
-// (test_compact_layout.cc); placed or several meshes add their own triples (12 B/tri) to the leaves.
+// The compact layout (accel/compact_bvh.h, picked by accel_options.h) holds the dragon in 40.3 B/tri: quantised
+// nodes 3.4, packed leaves (each leaf's distinct vertices and 8-bit indices, accel/packed_leaves.h) 18.9, indices
+// 12, normals 6 (test_compact_layout.cc); placed or several meshes add the 4 B/tri map.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +22,7 @@
 #include "accel/bvh_build.h"
 #include "accel/compact_bvh.h"
 #include "accel/hit.h"
+#include "accel/packed_leaves.h"
 #include "accel/wide_bvh.h"
 #include "core/progress_counter.h"
 #include "geometry/mesh.h"
@@ -80,7 +81,7 @@ class ShapeSet {
   const CompactBvh& compact_bvh() const { return ctri_bvh_; }
   TriangleMemory triangle_memory() const {
     return {tri_bvh_.nodes.size() * sizeof(tri_bvh_.nodes[0]) + ctri_bvh_.nodes.size() * sizeof(QuantNode),
-            tri_leaves_.memory_bytes() + itri_leaves_.memory_bytes(),
+            tri_leaves_.memory_bytes() + ptri_leaves_.memory_bytes(),
             (tri_ref_.size() + mesh_first_.size()) * sizeof(uint32_t)};
   }
 
@@ -113,12 +114,12 @@ class ShapeSet {
   }
   // All triangles of all meshes in one wide BVH (SIMD kernels, simd/traverse.h); the few analytic shapes in a
   // scalar BVH2 of their own, traced after it with t_max clipped to the triangle hit. The default layout fills
-  // tri_bvh_ and tri_leaves_, the compact one ctri_bvh_ and itri_leaves_.
+  // tri_bvh_ and tri_leaves_, the compact one ctri_bvh_ and ptri_leaves_.
   BvhLayout layout_ = BvhLayout::kDefault;
   WideBvh<kDefaultBvhWidth> tri_bvh_;
   TriangleLeaves tri_leaves_;
   CompactBvh ctri_bvh_;
-  IndexedLeaves itri_leaves_;
+  PackedLeaves ptri_leaves_;
   Bvh2 quadric_bvh_;
   Bounds3f bounds_;
 };
