@@ -247,7 +247,10 @@ TEST_CASE("Voxel emitters: only exposed faces become patches; cell meshes emit p
   CHECK(light_power(*scene, *l) > 0);
 }
 
-TEST_CASE("Voxel emitters: light_pdf through a hit equals the sample pdf", "[light][voxel]") {
+namespace {
+// A 7x7 checker of emitting and dark cubes with an emitting cube above and two flame cells, rotated and scaled:
+// emitting faces of many orientations and cells, for the tests that sample them and find them again by hits.
+auto checkered_emitter_scene() {
   VoxelGrid grid;
   for (int x = -3; x <= 3; ++x)
     for (int z = -3; z <= 3; ++z) grid.set(x, 0, z, int16_t((x + z) % 3 == 0 ? 1 : 3));
@@ -257,7 +260,12 @@ TEST_CASE("Voxel emitters: light_pdf through a hit equals the sample pdf", "[lig
   SceneBuilder b;
   b.add_shape(voxel_desc(grid, {emitting_cube(1, Rgb(2, 1, 0.5f)), VoxelCubeDef{3, {}, Rgb(0)}},
                          {flame_cell(-2, Rgb(5))}, rotate(20, {1, 0.3f, 0}) * scale({1, 0.7f, 1.2f})));
-  const auto scene = b.flatten();
+  return b.flatten();
+}
+}  // namespace
+
+TEST_CASE("Voxel emitters: light_pdf through a hit equals the sample pdf", "[light][voxel]") {
+  const auto scene = checkered_emitter_scene();
   const Light* l = patches_light(*scene);
   REQUIRE(l != nullptr);
   const int li = int(l - scene->lights.data());
@@ -287,16 +295,7 @@ TEST_CASE("Voxel emitters: light_pdf through a hit equals the sample pdf", "[lig
 
 TEST_CASE("Voxel emitters: the light BVH's part of a patch, sampled and found again through real hits",
           "[light][voxel][light_bvh]") {
-  VoxelGrid grid;
-  for (int x = -3; x <= 3; ++x)
-    for (int z = -3; z <= 3; ++z) grid.set(x, 0, z, int16_t((x + z) % 3 == 0 ? 1 : 3));
-  grid.set(0, 2, 0, 1);
-  grid.set(2, 1, -1, -2);
-  grid.set(-2, 1, 2, -2);
-  SceneBuilder b;
-  b.add_shape(voxel_desc(grid, {emitting_cube(1, Rgb(2, 1, 0.5f)), VoxelCubeDef{3, {}, Rgb(0)}},
-                         {flame_cell(-2, Rgb(5))}, rotate(20, {1, 0.3f, 0}) * scale({1, 0.7f, 1.2f})));
-  const auto scene = b.flatten();
+  const auto scene = checkered_emitter_scene();
   const Light* l = patches_light(*scene);
   REQUIRE(l != nullptr);
   const int li = int(l - scene->lights.data());
