@@ -76,11 +76,6 @@ int Distribution1D::sample_by_search(float u, float* pmf_out, float* u_remapped)
     return -1;
   }
   if (!(u >= 0)) u = 0;  // also maps NaN to 0, so the result below is always a valid bin
-  if (n == 1) {  // one light, a one-triangle emitter: what the search below gives, without it
-    if (pmf_out) *pmf_out = 1;
-    if (u_remapped) *u_remapped = std::min(u, kOneMinusEpsilon);
-    return 0;
-  }
   // The bin is the last i < n with cdf[i] <= u (cdf[0] = 0 <= u); zero-weight bins have cdf[i] == cdf[i+1] and
   // are skipped. u is random, so the branches of a search mispredict about half the time (std::upper_bound here
   // was 3 % of a Cornell render, whose light has two triangles): small tables count the bounds below u instead.

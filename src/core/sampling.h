@@ -45,9 +45,9 @@ class Distribution1D {
   float integral() const { return integral_; }  // sum of weights / n (the average weight)
   // Picks bin i with probability weights[i] / sum; *pmf receives that probability, *u_remapped a fresh uniform.
   int sample_discrete(float u, float* pmf = nullptr, float* u_remapped = nullptr) const {
-    if (uniform_ && u >= 0) {  // inline: an emitting quad's triangle is chosen once per light sample
+    if (uniform_) {  // inline: an emitting quad's triangle is chosen once per light sample
       const int n = int(func_.size());
-      const float x = std::min(u, kOneMinusEpsilon) * float(n);
+      const float x = (u >= 0 ? std::min(u, kOneMinusEpsilon) : 0.0f) * float(n);  // NaN and u < 0 pick bin 0
       const int i = std::min(int(x), n - 1);
       if (pmf) *pmf = uniform_pmf_;
       if (u_remapped) *u_remapped = std::clamp(x - float(i), 0.0f, kOneMinusEpsilon);
@@ -62,8 +62,9 @@ class Distribution1D {
  private:
   std::vector<float> func_, cdf_;
   float integral_ = 0;
-  // Equal weights (a quad's two triangles, a constant environment row): the bin is floor(u n), no search.
   int sample_by_search(float u, float* pmf, float* u_remapped) const;
+  // Equal weights (one weight, a quad's two triangles, a constant environment row): the bin is floor(u n), no
+  // search; the constructor sets it, so a default-constructed (empty) distribution searches.
   bool uniform_ = false;
   float uniform_pmf_ = 0;  // pmf(i) of every bin when uniform_, so sampling and pmf() agree to the bit
 };
