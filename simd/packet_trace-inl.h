@@ -1,5 +1,5 @@
 // The packet traversal kernel and its batch drivers, templates over the tree and leaf layouts (layout-inl.h),
-// included by traverse_packet.cc (the default layout) and traverse_compact.cc inside their foreach_target, after
+// included by traverse_packet*.cc (the default layout) and traverse_compact_*.cc inside their foreach_target, after
 // the other -inl headers, compiled without FMA contraction (see traverse.cc).
 // Packet traversal: P = 8 or 16 consecutive rays per packet, lanes = rays
 // (CappedTag<float, P>; narrower targets loop over lane groups). See traverse.h for the semantics; the packet

@@ -1,5 +1,6 @@
-// Packet traversal of WideBvh<N> + TriangleLeaves (see traverse.h for the semantics): the dispatch entry points.
-// The kernel (the algorithm and its measurements) is in packet_trace-inl.h, shared with traverse_compact.cc.
+// Packet traversal of WideBvh<8> + TriangleLeaves (see traverse.h for the semantics): the dispatch entry points.
+// The kernel (the algorithm and its measurements) is in packet_trace-inl.h, shared with the compact layouts'
+// files; width 4 has its own file (traverse_packet_wide4.cc) so the two compile in parallel (kernel_entries.h).
 
 // No FMA contraction (see traverse.cc): the watertight test must round exactly like the scalar one.
 #include "core/no_fp_contract.h"  // before every other include
@@ -9,11 +10,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <string>
 #include <type_traits>
 
 #include "accel/bvh_build.h"
-#include "core/error.h"
+#include "kernel_entries.h"
 #include "geometry/triangle.h"
 #include "traverse.h"
 
@@ -21,7 +21,7 @@
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "traverse_packet.cc"  // found through the simd/ include directory of torte_core
-#include <hwy/foreach_target.h>                  // IWYU pragma: keep
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
 #include "traverse-inl.h"
@@ -34,14 +34,8 @@ HWY_BEFORE_NAMESPACE();
 namespace torte::HWY_NAMESPACE {
 
 // Exported per target; packet_size is 8 or 16 (checked by the callers below).
-void ClosestPackets4(const WideBvh<4>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, Hit* h, int ps) {
-  ps == 16 ? ClosestPackets<16>(b, t, r, n, h) : ClosestPackets<8>(b, t, r, n, h);
-}
 void ClosestPackets8(const WideBvh<8>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, Hit* h, int ps) {
   ps == 16 ? ClosestPackets<16>(b, t, r, n, h) : ClosestPackets<8>(b, t, r, n, h);
-}
-void AnyPackets4(const WideBvh<4>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, uint8_t* o, int ps) {
-  ps == 16 ? AnyPackets<16>(b, t, r, n, o) : AnyPackets<8>(b, t, r, n, o);
 }
 void AnyPackets8(const WideBvh<8>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, uint8_t* o, int ps) {
   ps == 16 ? AnyPackets<16>(b, t, r, n, o) : AnyPackets<8>(b, t, r, n, o);
@@ -55,36 +49,17 @@ namespace torte {
 
 static_assert(kMaxBvhDepth <= traverse_detail::kMaxWideDepth, "traversal stacks are sized for the builder's depth");
 
-HWY_EXPORT(ClosestPackets4);
 HWY_EXPORT(ClosestPackets8);
-HWY_EXPORT(AnyPackets4);
 HWY_EXPORT(AnyPackets8);
 
-namespace {
-void check_packet_size(int packet_size) {
-  if (packet_size != 8 && packet_size != 16)
-    throw Error("Ray packets hold 8 or 16 rays, not " + std::to_string(packet_size) + ".");
-}
-}  // namespace
-
-void intersect_closest_packets(const WideBvh<4>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
-                               Hit* hits, int packet_size) {
-  check_packet_size(packet_size);
-  HWY_DYNAMIC_DISPATCH(ClosestPackets4)(bvh, tris, rays, count, hits, packet_size);
-}
 void intersect_closest_packets(const WideBvh<8>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                                Hit* hits, int packet_size) {
-  check_packet_size(packet_size);
+  traverse_detail::check_packet_size(packet_size);
   HWY_DYNAMIC_DISPATCH(ClosestPackets8)(bvh, tris, rays, count, hits, packet_size);
-}
-void intersect_any_packets(const WideBvh<4>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
-                           uint8_t* occluded, int packet_size) {
-  check_packet_size(packet_size);
-  HWY_DYNAMIC_DISPATCH(AnyPackets4)(bvh, tris, rays, count, occluded, packet_size);
 }
 void intersect_any_packets(const WideBvh<8>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                            uint8_t* occluded, int packet_size) {
-  check_packet_size(packet_size);
+  traverse_detail::check_packet_size(packet_size);
   HWY_DYNAMIC_DISPATCH(AnyPackets8)(bvh, tris, rays, count, occluded, packet_size);
 }
 
