@@ -80,7 +80,9 @@ PackedLeaves pack(WideBvh<8>& bvh, const VertexFn& vertices) {
         leaves.push_back(l);
       }
   std::sort(leaves.begin(), leaves.end(), [](const Leaf& a, const Leaf& b) { return a.first < b.first; });
-  // Pass 1: each block's size; pass 2 (after a scan): the blocks.
+  // Pass 1: each block's size; pass 2 (after a scan): the blocks. Pass 2 finds each leaf's distinct vertices again
+  // rather than keeping them from pass 1: kept, they would take more memory than the blocks, on the scenes this
+  // layout exists to fit.
   std::vector<size_t> offset(leaves.size() + 1, 0);
   parallel_for_blocks(size_t(0), leaves.size(), 4096, [&](IndexRange<size_t> r) {
     LeafVertices lv;
