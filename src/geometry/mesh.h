@@ -41,7 +41,10 @@ struct TriangleMesh {
   bool has_normals() const { return !nx.empty(); }
   bool has_uvs() const { return placed() ? source->has_uvs() : !u.empty(); }
   Vec3f position(uint32_t i) const {
-    return placed() ? to_world.apply_point(source->position(i)) : Vec3f{x[i], y[i], z[i]};
+    // Not recursive (a source is never placed), so the builder's per-vertex loops inline it.
+    const TriangleMesh& m = placed() ? *source : *this;
+    const Vec3f p{m.x[i], m.y[i], m.z[i]};
+    return placed() ? to_world.apply_point(p) : p;
   }
   Vec3f normal(uint32_t i) const { return {nx[i], ny[i], nz[i]}; }
   Vec2f uv(uint32_t i) const { return placed() ? source->uv(i) : Vec2f(u[i], v[i]); }
