@@ -85,9 +85,8 @@ class LightBvh {
   void weigh_visibility(const EmitterView& scene, std::span<const Light> lights,
                         const std::function<bool(const Ray&)>& occluded);
 
-  /// What the descent reads of a node: 48 bytes with the children of a node side by side, so that a step of
-  /// the descent reads one pair (the build's LightBounds, 72 bytes each and siblings apart, missed the cache on
-  /// most steps of the 10,000 beads' descent).
+  /// What the descent reads of a node: 48 bytes, a node's two children side by side, so that a step of the
+  /// descent reads one pair of neighbours instead of two 72-byte build nodes far apart (the build's are dropped).
   struct PackedNode {
     Vec3f center;
     float phi = 0;
