@@ -4,7 +4,9 @@
 # torte:render_seconds) and the RMSE at equal time, RMSE * sqrt(time) (Monte Carlo error falls as 1/sqrt(time)),
 # over all pixels and over those that do not show an emitter (the reference's emission AOV is zero there).
 # Usage: scripts/light-sampler-rmse.sh [build dir] [spp] [reference spp]; W, H set the size (default 240x135),
-# SCENES the scenes (default below; minecraft.lua is the bluenbt world in daylight, its torches and lava), REPS
+# SCENES the scenes (default below; minecraft.lua is the bluenbt world in daylight, minecraft-cave.lua its ancient
+# city underground, lit by candles, soul fire and lava; both are skipped without their world in ../shared/data),
+# REPS
 # the renders per sampler (default 3, seeds 1..REPS, the two samplers interleaved so that load changes hit both
 # alike): the RMSE is over all of them (the root of the mean squared error), the time their median.
 # Needs python3-numpy and python3-openimageio (scripts/install-deps.sh --cycles). Writes to out/light-sampler/.
@@ -18,12 +20,18 @@ H=${H:-135}
 OUT=out/light-sampler
 mkdir -p "$OUT"
 REPS=${REPS:-3}
-scenes=(${SCENES:-many-lights materials textures cornell-box minecraft})
+scenes=(${SCENES:-many-lights materials textures cornell-box minecraft minecraft-cave})
+kept=()
 for s in "${scenes[@]}"; do
+  if [[ $s == minecraft* && ! -d ../shared/data/minecraft/bluenbt-1.20.1-paper ]]; then
+    echo "$s: skipped (../shared/data/minecraft/bluenbt-1.20.1-paper is absent: the scene would be an empty sky)"
+    continue
+  fi
   ref="$OUT/$s-ref$REF_SPP-${W}x$H.exr"
   # With its emission layer: the pixels that show an emitter are left out of the second RMSE below.
   [[ -f $ref ]] || "$BUILD/torte" --quiet --aovs emission "scenes/$s.lua" width=$W height=$H spp="$REF_SPP" seed=7 \
     output="$ref"
+  kept+=("$s")
   for ls in bvh power; do
     # The shipped scenes take no light_sampler argument: a wrapper sets it on every torte.render{} call.
     cat > "$OUT/wrap-$ls.lua" <<LUA
@@ -39,7 +47,7 @@ LUA
     done
   done
 done
-/usr/bin/python3 - "$OUT" "$REF_SPP" "$W" "$H" "$REPS" "${scenes[@]}" <<'PY'
+/usr/bin/python3 - "$OUT" "$REF_SPP" "$W" "$H" "$REPS" "${kept[@]}" <<'PY'
 import sys, numpy as np, OpenImageIO as oiio
 out, ref_spp, w, h, reps, scenes = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), sys.argv[6:]
 def load(path):

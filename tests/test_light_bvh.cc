@@ -161,6 +161,39 @@ TEST_CASE("light bvh: sampling follows the probabilities, and lights facing away
   }
 }
 
+TEST_CASE("light bvh: a group emitting everywhere weighs the receiver by cos(max(0, theta_i - theta_b)), as a cone would",
+          "[lights][light_bvh]") {
+  // Spheres' and points' groups take a shortcut through the cosines scaled by the distance; here against the
+  // angles themselves: theta_i between the receiver normal and the box centre, theta_b the box's bounding sphere.
+  Pcg32 rng(5);
+  int bounded = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    LightBounds b;
+    const Vec3f lo(rng.next_float() * 4 - 2, rng.next_float() * 4 - 2, rng.next_float() * 4 - 2);
+    b.bounds.extend(lo);
+    b.bounds.extend(lo + Vec3f(rng.next_float(), rng.next_float(), rng.next_float()) * 2.0f);
+    b.phi = 0.5f + rng.next_float();
+    b.normals = DirectionCone::everywhere();
+    b.cos_theta_e = std::cos(kPi / 2);
+    const Vec3f p(rng.next_float() * 12 - 6, rng.next_float() * 12 - 6, rng.next_float() * 12 - 6);
+    const Vec3f n = random_dir(rng);
+    const Vec3f c = b.bounds.center();
+    const float dc2 = length_squared(p - c), r2 = length_squared(b.bounds.diagonal()) / 4;
+    const float d2 = std::max(dc2, length_squared(b.bounds.diagonal()) / 64);
+    float expected = b.phi / d2;
+    if (dc2 > r2) {
+      const float theta_i = std::acos(std::min(1.0f, std::fabs(dot(p - c, n)) / std::sqrt(dc2)));
+      const float theta_b = std::asin(std::sqrt(r2 / dc2));
+      expected *= std::cos(std::max(0.0f, theta_i - theta_b));
+      bounded += theta_i > theta_b;
+    }
+    INFO("trial " << trial);
+    CHECK(b.importance(p, n) == Approx(expected).epsilon(2e-3).margin(1e-6));
+    CHECK(b.importance(p, {0, 0, 0}) == Approx(b.phi / d2).epsilon(1e-5));
+  }
+  CHECK(bounded > 500);  // most trials exercise the bound, not only the points near or facing the box
+}
+
 TEST_CASE("light bvh: a light that can reach the receiver is never given probability zero", "[lights][light_bvh]") {
   const TestScene s = make_scene(200, 30, 30, 0, 29);
   const LightBvh bvh(s.view(), s.lights, s.power);

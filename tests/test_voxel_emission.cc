@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "light/light_emission.h"
+#include "render/aov_pass.h"
 #include "render/render.h"
 #include "scene/builder.h"
 #include "scene_helpers.h"
@@ -435,4 +436,26 @@ TEST_CASE("Voxel emitters: instanced emitting grids and emitting analytic cell s
     b.add_shape(voxel_desc(grid, {}, {c}));
     CHECK_THROWS_WITH(b.flatten(), Catch::Contains("only meshes"));
   }
+}
+
+TEST_CASE("Voxel emitters: the emission AOV holds an emitting cube's radiance where the camera sees it",
+          "[light][voxel][aov]") {
+  // A 3x3 floor of plain cubes with one emitting cube in the middle, seen from nearly straight above.
+  VoxelGrid grid;
+  for (int x = -1; x <= 1; ++x)
+    for (int z = -1; z <= 1; ++z) grid.set(x, 0, z, int16_t(x == 0 && z == 0 ? 1 : 3));
+  SceneBuilder b;
+  b.add_shape(voxel_desc(grid, {emitting_cube(1, Rgb(2, 1, 0.5f)), VoxelCubeDef{3, {}, Rgb(0)}}, {}));
+  const auto scene = b.flatten();
+  RenderSettings s;
+  s.width = s.height = 15;  // odd: the centre pixel looks at the emitting cube's top face
+  const auto layers = render_aovs(*scene, Camera(test::camera_at({0.5f, 6, 0.3f}, {0.5f, 0, 0.5f}, 25), s.width, s.height),
+                                  s, {Aov::Emission}, 4);
+  REQUIRE(layers.size() == 1);
+  const ImageLayer& e = layers[0];
+  const auto at = [&](int x, int y) { return e.at(size_t(y) * size_t(s.width) + size_t(x)); };
+  CHECK(at(7, 7)[0] == Approx(2));
+  CHECK(at(7, 7)[2] == Approx(0.5f));
+  CHECK(at(0, 0)[0] == 0);  // a corner: a plain cube's top (the view spans 2.2 cells), which emits nothing
+  CHECK(at(0, 7)[0] == 0);
 }

@@ -60,6 +60,15 @@ struct AovSample {
   float material = 0;
 };
 
+// Radiance emitted towards -d at the hit: an area light's, or an emitting voxel face's or cell shape's (as
+// stage_emission.h finds them), so that a voxel world's torches and lava are in the layer too.
+Rgb emitted_at(const Scene& scene, const SurfaceHit& s, Vec3f d) {
+  if (const int area = scene.objects[s.object].area_light; area >= 0)
+    return area_emission(scene, scene.lights[size_t(area)], s, d);
+  if (const SurfaceEmission* e = patch_emission(scene, s); e && (e->two_sided || dot(s.ng, d) < 0)) return e->radiance;
+  return Rgb(0);
+}
+
 // Follows the camera ray `ray` (already intersected: `hit`) through specular bounces to the first surface with a
 // non-specular lobe; its BSDF sample weight f |cos| / pdf is an unbiased estimate of its directional albedo.
 AovSample trace_sample(const Scene& scene, Ray ray, Hit hit, bool was_hit, Vec3f forward, Pcg32& rng) {
@@ -77,8 +86,7 @@ AovSample trace_sample(const Scene& scene, Ray ray, Hit hit, bool was_hit, Vec3f
       out.position = s.p;
       out.depth = hit.t * dot(ray.d, forward);
       out.material = material_id(scene.materials, assigned);
-      if (const int area = scene.objects[s.object].area_light; area >= 0)
-        out.emitted = area_emission(scene, scene.lights[size_t(area)], s, ray.d);
+      out.emitted = emitted_at(scene, s, ray.d);
     }
     const MaterialRef m = resolve_material(scene, assigned, s, 0.0f, [&rng] { return rng.next_float(); },
                                            rng.next_u32());
@@ -128,9 +136,7 @@ Rgb emitter_edge(const Scene& scene, const Camera& camera, const Filter& filter,
     wsum += fs.weight;
     if (!scene.intersect(ray, &hit)) continue;
     const SurfaceHit s = scene.surface(Ray{traced_from.o, traced_from.d, hit.t}, hit);
-    const int area = scene.objects[s.object].area_light;
-    if (area < 0) continue;
-    const Rgb le = area_emission(scene, scene.lights[size_t(area)], s, traced_from.d);
+    const Rgb le = emitted_at(scene, s, traced_from.d);
     sum[0] += fs.weight * le.r, sum[1] += fs.weight * le.g, sum[2] += fs.weight * le.b;
   }
   return wsum != 0 ? Rgb(float(sum[0] / wsum), float(sum[1] / wsum), float(sum[2] / wsum)) : Rgb(0);

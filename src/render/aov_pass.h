@@ -7,8 +7,9 @@
 //   normal         world-space shading normal at that surface, turned towards the viewer
 //   depth          camera-space distance along the view axis to the first hit (+inf where nothing is hit)
 //   position       world-space first hit (0 where nothing is hit)
-//   emission       radiance the camera sees emitted at the first hit by area lights (as Cycles' Emit pass; the
-//                  sky is not in it): light without transport noise, which the denoiser keeps apart
+//   emission       radiance the camera sees emitted at the first hit by area lights and emitting voxel faces or
+//                  cell shapes (as Cycles' Emit pass; the sky is not in it): light without transport noise,
+//                  which the denoiser keeps apart
 //   material_id    1 + dense index of the first hit's material (as the script assigned it: a mix is one id), 0
 //                  where nothing is hit; the most frequent id among the pixel's samples
 //   samples        camera samples the pixel took (a heat map of adaptive sampling, noise_threshold); not traced

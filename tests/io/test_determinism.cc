@@ -67,6 +67,8 @@ const std::vector<Config> kConfigs = {
     {"minecraft.lua", {"world=prismarine-1.12.2", "box=120,0,-80,330,96,0"}, "minecraft/prismarine-1.12.2", true, 4},
     {"minecraft.lua", {"world=querz-nbt-1.18.2", "box=50,-64,50,150,112,150"}, "minecraft/querz-nbt-1.18.2", true,
      3, true},
+    // The ancient city and the lava beside it (the box keeps the load short; it opens the cave to the sky).
+    {"minecraft-cave.lua", {"box=0,-64,0,112,0,80"}, "minecraft/bluenbt-1.20.1-paper", true, 3},
 };
 
 // Thread counts of the runs: both counts, and a repeat at the same count.
