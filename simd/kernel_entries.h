@@ -34,6 +34,31 @@ inline void check_packet_size(int packet_size) {
     ps == 16 ? AnyPackets<16>(b, t, r, n, o) : AnyPackets<8>(b, t, r, n, o);                                  \
   }
 
+// The per-target packet kernels of the default layout at width W (inside torte::HWY_NAMESPACE), and their
+// dispatch entry points (inside namespace torte, under HWY_ONCE); packet_size is 8 or 16.
+#define TORTE_PACKET_KERNELS(W)                                                                                \
+  void ClosestPackets##W(const WideBvh<W>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, Hit* h,    \
+                         int ps) {                                                                             \
+    ps == 16 ? ClosestPackets<16>(b, t, r, n, h) : ClosestPackets<8>(b, t, r, n, h);                          \
+  }                                                                                                            \
+  void AnyPackets##W(const WideBvh<W>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, uint8_t* o,     \
+                     int ps) {                                                                                 \
+    ps == 16 ? AnyPackets<16>(b, t, r, n, o) : AnyPackets<8>(b, t, r, n, o);                                  \
+  }
+#define TORTE_PACKET_ENTRIES(W)                                                                                \
+  HWY_EXPORT(ClosestPackets##W);                                                                               \
+  HWY_EXPORT(AnyPackets##W);                                                                                   \
+  void intersect_closest_packets(const WideBvh<W>& bvh, const TriangleLeaves& tris, const RaySoA& rays,      \
+                                 size_t count, Hit* hits, int packet_size) {                                   \
+    traverse_detail::check_packet_size(packet_size);                                                           \
+    HWY_DYNAMIC_DISPATCH(ClosestPackets##W)(bvh, tris, rays, count, hits, packet_size);                        \
+  }                                                                                                            \
+  void intersect_any_packets(const WideBvh<W>& bvh, const TriangleLeaves& tris, const RaySoA& rays,          \
+                             size_t count, uint8_t* occluded, int packet_size) {                               \
+    traverse_detail::check_packet_size(packet_size);                                                           \
+    HWY_DYNAMIC_DISPATCH(AnyPackets##W)(bvh, tris, rays, count, occluded, packet_size);                        \
+  }
+
 // The dispatch entry points of traverse.h for one compact pairing (inside namespace torte, under HWY_ONCE).
 #define TORTE_COMPACT_ENTRIES(Name, Tree, Leaves)                                                              \
   HWY_EXPORT(ClosestSingle##Name);                                                                             \

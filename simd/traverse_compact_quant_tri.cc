@@ -18,11 +18,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
-#include "traverse-inl.h"
-#include "packet-inl.h"
-#include "traverse_single-inl.h"
-#include "packet_tests-inl.h"
-#include "packet_trace-inl.h"
+#include "traverse_kernels-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace torte::HWY_NAMESPACE {

@@ -12,7 +12,6 @@
 #include <cstring>
 #include <type_traits>
 
-#include "accel/bvh_build.h"
 #include "kernel_entries.h"
 #include "geometry/triangle.h"
 #include "traverse.h"
@@ -24,42 +23,16 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
-#include "traverse-inl.h"
-#include "packet-inl.h"
-#include "traverse_single-inl.h"
-#include "packet_tests-inl.h"
-#include "packet_trace-inl.h"
+#include "traverse_kernels-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace torte::HWY_NAMESPACE {
-
-// Exported per target; packet_size is 8 or 16 (checked by the callers below).
-void ClosestPackets4(const WideBvh<4>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, Hit* h, int ps) {
-  ps == 16 ? ClosestPackets<16>(b, t, r, n, h) : ClosestPackets<8>(b, t, r, n, h);
-}
-void AnyPackets4(const WideBvh<4>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, uint8_t* o, int ps) {
-  ps == 16 ? AnyPackets<16>(b, t, r, n, o) : AnyPackets<8>(b, t, r, n, o);
-}
-
+TORTE_PACKET_KERNELS(4)
 }  // namespace torte::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace torte {
-
-HWY_EXPORT(ClosestPackets4);
-HWY_EXPORT(AnyPackets4);
-
-void intersect_closest_packets(const WideBvh<4>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
-                               Hit* hits, int packet_size) {
-  traverse_detail::check_packet_size(packet_size);
-  HWY_DYNAMIC_DISPATCH(ClosestPackets4)(bvh, tris, rays, count, hits, packet_size);
-}
-void intersect_any_packets(const WideBvh<4>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
-                           uint8_t* occluded, int packet_size) {
-  traverse_detail::check_packet_size(packet_size);
-  HWY_DYNAMIC_DISPATCH(AnyPackets4)(bvh, tris, rays, count, occluded, packet_size);
-}
-
+TORTE_PACKET_ENTRIES(4)
 }  // namespace torte
 #endif  // HWY_ONCE
