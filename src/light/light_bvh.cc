@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/huge_pages.h"  // free_storage
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "geometry/quadric.h"
@@ -238,7 +239,7 @@ LightBvh::LightBvh(const EmitterView& scene, std::span<const Light> lights, std:
     build(ids, 0, ids.size(), all, items, 0, 0);
     repack();
     if (!infinite_.empty()) build_grid();
-    nodes_ = {};
+    free_storage(nodes_);  // `nodes_ = {}` would keep its capacity (72 B per node)
   }
   if (ids.size() == 1 && infinite_.empty()) only_light_ = int(items[ids[0]].light), only_part_ = items[ids[0]].part;
 }
