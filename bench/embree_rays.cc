@@ -97,13 +97,19 @@ void load16(Packet& r, int* valid, const RayBatch& rays, size_t i, size_t e) {
   }
 }
 
+// The context of a 16-ray call: Embree's coherent hint or its default (incoherent) mode.
+RTCIntersectContext packet_context(bool coherent) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  return ctx;
+}
+
 }  // namespace
 
 void embree_closest16(RTCScene scene, const RayBatch& rays, size_t b, size_t e, Hit* out, bool coherent,
                       bool t_only) {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RTCIntersectContext ctx = packet_context(coherent);
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[16];
   for (size_t i = b; i < e; i += 16) {
@@ -117,9 +123,7 @@ void embree_closest16(RTCScene scene, const RayBatch& rays, size_t b, size_t e, 
 }
 
 void embree_any16(RTCScene scene, const RayBatch& rays, size_t b, size_t e, uint8_t* occ, bool coherent) {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RTCIntersectContext ctx = packet_context(coherent);
   alignas(64) RTCRay16 r;
   alignas(64) int valid[16];
   for (size_t i = b; i < e; i += 16) {
