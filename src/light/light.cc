@@ -63,6 +63,11 @@ const SurfaceEmission* patch_emission(const EmitterView& scene, const SurfaceHit
   return e.light >= 0 ? &e : nullptr;
 }
 
+const SurfaceEmission* patch_emission_towards(const EmitterView& scene, const SurfaceHit& hit, Vec3f w) {
+  const SurfaceEmission* e = patch_emission(scene, hit);
+  return e && (e->two_sided || dot(hit.ng, w) < 0) ? e : nullptr;
+}
+
 Rgb area_radiance(const EmitterView& scene, const Light& light, Vec3f p, Vec3f n, Vec2f uv) {
   // A constant texture is folded into the parameter's value (1 for an untextured light).
   if (light.emission_texture.texture < 0 || !scene.textures) return light.radiance * light.emission_texture.value;

@@ -140,6 +140,9 @@ Rgb area_emission(const EmitterView& scene, const Light& light, const SurfaceHit
 // Emission of a surface that is part of a Patches light (a voxel face or cell shape): the scene's
 // override_emission entry of its material override, or nullptr.
 const SurfaceEmission* patch_emission(const EmitterView& scene, const SurfaceHit& hit);
+// patch_emission when that surface emits towards -w (its emitting side, or either side when two-sided), else
+// nullptr: what a ray along w that hits it sees.
+const SurfaceEmission* patch_emission_towards(const EmitterView& scene, const SurfaceHit& hit, Vec3f w);
 // True for lights that rays escaping the scene can see (Infinite, Environment, Sky).
 inline bool is_infinite_light(const Light& light) {
   return light.kind == LightKind::Infinite || light.kind == LightKind::Environment || light.kind == LightKind::Sky;

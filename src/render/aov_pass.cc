@@ -65,7 +65,7 @@ struct AovSample {
 Rgb emitted_at(const Scene& scene, const SurfaceHit& s, Vec3f d) {
   if (const int area = scene.objects[s.object].area_light; area >= 0)
     return area_emission(scene, scene.lights[size_t(area)], s, d);
-  if (const SurfaceEmission* e = patch_emission(scene, s); e && (e->two_sided || dot(s.ng, d) < 0)) return e->radiance;
+  if (const SurfaceEmission* e = patch_emission_towards(scene, s, d)) return e->radiance;
   return Rgb(0);
 }
 

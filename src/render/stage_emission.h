@@ -44,7 +44,7 @@ inline void add_surface_emission(const Scene& scene, const TransportRules& rules
       const float w = emission_weight(scene, ps, rules, i, object.area_light, light_pdf(scene, light, o, d, &s, t));
       ps.radiance[i] += ps.beta[i] * le * w;
     }
-  } else if (const SurfaceEmission* e = patch_emission(scene, s); e && (e->two_sided || dot(s.ng, d) < 0)) {
+  } else if (const SurfaceEmission* e = patch_emission_towards(scene, s, d)) {
     // An emitting voxel face or cell shape (a Patches light). The light BVH samples one part of it at a time:
     // the density is that of the hit patch's part, times the part's probability.
     const Light& light = scene.lights[size_t(e->light)];
