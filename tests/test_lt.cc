@@ -9,6 +9,7 @@
 
 #include "core/sampling.h"
 #include "cornell_like.h"
+#include "cornell_reference.h"
 #include "render/render.h"
 #include "scene_helpers.h"
 
@@ -17,9 +18,7 @@ using namespace torte::test;
 
 TEST_CASE("lt converges to path on the Cornell-like box (16x16 tile means of a 64x64 image)", "[render][lt]") {
   const auto scene = cornell_like();
-  RenderSettings p = integrator_settings(IntegratorKind::Path, 64, 256);
-  p.seed = 1;
-  const Image path = render_view(*scene, box_camera(), p).image;
+  const Image& path = path_reference();  // the suite's cached one
   const RenderOutput lt = render_view(*scene, box_camera(), integrator_settings(IntegratorKind::Lt, 64, 128));
   INFO("lt mean " << image_mean(lt.image) << ", path mean " << image_mean(path) << ", worst tile "
                   << max_tile_error(lt.image, path, 16));

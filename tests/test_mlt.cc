@@ -108,7 +108,8 @@ TEST_CASE("mlt error falls with the mutations (the spread of two seeds' images)"
   // error, which must fall as 1/sqrt(mutations) (4x at 16x). No reference needed, so it is cheap.
   const auto scene = cornell_like();
   const auto spread = [&](int spp) {
-    RenderSettings a = integrator_settings(IntegratorKind::Mlt, 64, spp), b = a;
+    // Sanitizer builds: a quarter of the pixels (the ratio does not depend on the image size).
+    RenderSettings a = integrator_settings(IntegratorKind::Mlt, reduced() ? 32 : 64, spp), b = a;
     b.seed = 1;
     return rmse(render_view(*scene, box_camera(), a).image, render_view(*scene, box_camera(), b).image);
   };

@@ -54,11 +54,13 @@ TEST_CASE("ppm converges to path on the Cornell-like box (16x16 tile means of a 
 }
 
 TEST_CASE("vcm and ppm error against the reference falls with the iterations", "[render][vcm]") {
-  const Image& path = path_reference();
+  // Sanitizer builds: a quarter of the pixels (the ratio does not depend on the image size).
+  const int size = reduced() ? 32 : 64;
+  const Image& path = reduced() ? path_reference_32() : path_reference();
   const auto scene = cornell_like();
   for (const IntegratorKind k : {IntegratorKind::Vcm, IntegratorKind::Ppm}) {
-    const double e4 = rmse(render_view(*scene, box_camera(), vcm_settings(k, 64, 4, 0.02f)).image, path);
-    const double e64 = rmse(render_view(*scene, box_camera(), vcm_settings(k, 64, 64, 0.02f)).image, path);
+    const double e4 = rmse(render_view(*scene, box_camera(), vcm_settings(k, size, 4, 0.02f)).image, path);
+    const double e64 = rmse(render_view(*scene, box_camera(), vcm_settings(k, size, 64, 0.02f)).image, path);
     INFO(integrator_name(k) << ": rmse at 4 iterations " << e4 << ", at 64 " << e64);
     // Noise falls as 1/sqrt(iterations) and the blur with the radius: well below half at 16x the iterations.
     CHECK(e64 < 0.45 * e4);
@@ -81,7 +83,8 @@ TEST_CASE("vcm and ppm furnace: inside a closed emitting Lambert sphere, depth k
 
 TEST_CASE("vcm without merging equals bdpt", "[render][vcm]") {
   const auto scene = cornell_like();
-  RenderSettings s = integrator_settings(IntegratorKind::Vcm, 32, 256);
+  // Sanitizer builds: half the samples (worst tile measured 0.25 % both ways).
+  RenderSettings s = integrator_settings(IntegratorKind::Vcm, 32, reduced() ? 128 : 256);
   const Camera cam(box_camera(), s.width, s.height);
   VcmSettings off = VcmSettings::from(s);
   off.merge = false;
