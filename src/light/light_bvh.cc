@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "core/huge_pages.h"  // free_storage
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "geometry/quadric.h"
@@ -235,19 +234,19 @@ LightBvh::LightBvh(const EmitterView& scene, std::span<const Light> lights, std:
   }
   trail_.assign(items.size(), 0);
   if (!ids.empty()) {
-    nodes_.reserve(2 * ids.size());
-    build(ids, 0, ids.size(), all, items, 0, 0);
-    repack();
-    if (!infinite_.empty()) build_grid();
-    free_storage(nodes_);  // `nodes_ = {}` would keep its capacity (72 B per node)
+    std::vector<Node> nodes;
+    nodes.reserve(2 * ids.size());
+    build(nodes, ids, 0, ids.size(), all, items, 0, 0);
+    repack(nodes);
+    if (!infinite_.empty()) build_grid(nodes[0].bounds.bounds);
   }
   if (ids.size() == 1 && infinite_.empty()) only_light_ = int(items[ids[0]].light), only_part_ = items[ids[0]].part;
 }
 
-void LightBvh::repack() {
-  packed_.assign(nodes_.size(), {});
+void LightBvh::repack(const std::vector<Node>& nodes) {
+  packed_.assign(nodes.size(), {});
   const auto pack_node = [&](uint32_t from, uint32_t to) {
-    const Node& nd = nodes_[from];
+    const Node& nd = nodes[from];
     packed_[to] = pack(nd.bounds);
     if (nd.leaf) packed_[to].index = nd.child_or_light, packed_[to].part_bits |= nd.part | PackedNode::kLeaf;
   };
@@ -257,8 +256,8 @@ void LightBvh::repack() {
   while (!stack.empty()) {
     const auto [from, to] = stack.back();
     stack.pop_back();
-    if (nodes_[from].leaf) continue;
-    const uint32_t a = from + 1, b = nodes_[from].child_or_light;
+    if (nodes[from].leaf) continue;
+    const uint32_t a = from + 1, b = nodes[from].child_or_light;
     packed_[to].index = next;
     pack_node(a, next);
     pack_node(b, next + 1);
@@ -287,9 +286,8 @@ float LightBvh::cut_irradiance(Vec3f c, float min_d2) const {
   return float(sum / kPi);
 }
 
-void LightBvh::build_grid() {
+void LightBvh::build_grid(const Bounds3f& r) {
   if (packed_.size() < 2) return;  // one light: the root's importance is its own
-  const Bounds3f& r = nodes_[0].bounds.bounds;
   const Vec3f e = r.diagonal();
   const float margin = 0.25f * std::max({e.x, e.y, e.z});
   if (!(margin > 0) || !std::isfinite(margin)) return;
@@ -365,12 +363,13 @@ void LightBvh::weigh_visibility(const EmitterView& scene, std::span<const Light>
   });
 }
 
-uint32_t LightBvh::build(std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<LightBounds>& all,
-                         const std::vector<Item>& items, uint64_t trail, int depth) {
-  const uint32_t index = uint32_t(nodes_.size());
-  nodes_.emplace_back();
+uint32_t LightBvh::build(std::vector<Node>& nodes, std::vector<uint32_t>& ids, size_t begin, size_t end,
+                         const std::vector<LightBounds>& all, const std::vector<Item>& items, uint64_t trail,
+                         int depth) {
+  const uint32_t index = uint32_t(nodes.size());
+  nodes.emplace_back();
   if (end - begin == 1) {
-    nodes_[index] = {all[ids[begin]], items[ids[begin]].light, items[ids[begin]].part, true};
+    nodes[index] = {all[ids[begin]], items[ids[begin]].light, items[ids[begin]].part, true};
     trail_[ids[begin]] = trail;
     return index;
   }
@@ -418,9 +417,9 @@ uint32_t LightBvh::build(std::vector<uint32_t>& ids, size_t begin, size_t end, c
     }
   }
   if (depth >= 63) throw Error("light BVH: too deep (over 63 levels)");
-  build(ids, begin, mid, all, items, trail, depth + 1);
-  const uint32_t second = build(ids, mid, end, all, items, trail | (uint64_t(1) << depth), depth + 1);
-  nodes_[index] = {node, second, 0, false};
+  build(nodes, ids, begin, mid, all, items, trail, depth + 1);
+  const uint32_t second = build(nodes, ids, mid, end, all, items, trail | (uint64_t(1) << depth), depth + 1);
+  nodes[index] = {node, second, 0, false};
   return index;
 }
 

@@ -114,14 +114,14 @@ class LightBvh {
   struct Item {  // a leaf: a light, or one part of a Patches light
     uint32_t light, part;
   };
-  uint32_t build(std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<LightBounds>& all,
-                 const std::vector<Item>& items, uint64_t trail, int depth);
-  void build_grid();
+  // The build's tree goes into `nodes` (a local of the constructor: repack() makes packed_ of it).
+  uint32_t build(std::vector<Node>& nodes, std::vector<uint32_t>& ids, size_t begin, size_t end,
+                 const std::vector<LightBounds>& all, const std::vector<Item>& items, uint64_t trail, int depth);
+  void build_grid(const Bounds3f& root);
   int sample_bounded(Vec3f p, Vec3f n, float u, float prob, float* pmf, uint32_t* part) const;
   size_t grid_cell(Vec3f p) const;  // the cell holding p, or SIZE_MAX outside the grid
   float cut_irradiance(Vec3f c, float min_d2) const;
-  void repack();
-  std::vector<Node> nodes_;          // during the build only
+  void repack(const std::vector<Node>& nodes);
   std::vector<PackedNode> packed_;   // the root, then pairs of siblings
   std::vector<uint32_t> infinite_;      // indices of the lights at infinity
   std::vector<uint32_t> first_item_;    // per light: its first item (its parts follow)
