@@ -108,10 +108,9 @@ void renders_identically(const Config& c) {
   for (const std::string& a : c.args) name += "_" + a.substr(a.find('=') + 1, 12);
   std::replace_if(name.begin(), name.end(), [](char ch) { return ch == ',' || ch == '.' || ch == '-'; }, '_');
   TempDir dir("determinism", name);
-  const char* reduced = std::getenv("TORTE_TEST_REDUCED");
   const char* asan = std::getenv("ASAN_OPTIONS");
   const std::string asan_before = asan ? asan : "";
-  if (c.lsan_tracer_crashes && reduced && std::string(reduced) != "0")
+  if (c.lsan_tracer_crashes && reduced_test_sizes())
     setenv("ASAN_OPTIONS", (asan_before + ":detect_leaks=0").c_str(), 1);
   struct RestoreAsanOptions {
     bool had;
@@ -124,7 +123,7 @@ void renders_identically(const Config& c) {
   // Sanitizer builds: two runs, one per thread count (two processes, so two Lua hash seeds as well). What they
   // check there is memory and UB in each scene's path; the repeats hunt rare orderings, which the normal build
   // does with every run.
-  const int runs = reduced && std::string(reduced) != "0" ? std::min(c.runs, 2) : c.runs;
+  const int runs = reduced_test_sizes() ? std::min(c.runs, 2) : c.runs;
   for (int run = 0; run < runs; ++run) {
     const int t = kThreads[run];
     const std::string exr = dir / ("run" + std::to_string(run) + ".exr");
