@@ -69,6 +69,10 @@ void push_connection(ShadowQueue& shadows, const BdptVertex& from, Vec3f wi, Vec
   // Aimed at the target from o (along wi itself the offset would shift the ray sideways, and a curved surface
   // near the target could then occlude it; render/shade.h, push_shadow_ray).
   const Vec3f d = offset_origin(to, to_ng, -wi) - o;
+  if (!(dot(d, wi) > 0)) {  // the ends are nearer than their offsets: nothing can lie between
+    shadows.push(o, wi, 0, value, path);
+    return;
+  }
   const float len = length(d);
   shadows.push(o, d * (1 / len), len * (1 - 1e-3f), value, path);
 }

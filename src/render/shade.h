@@ -118,6 +118,10 @@ inline void push_shadow_ray(ShadowQueue& shadows, const SurfaceHit& s, Vec3f wi,
   // moves the ray sideways by the offset, and a curved or obliquely seen emitter then lies nearer along it than
   // `distance` minus the offset: a sphere light lost up to four fifths of its samples to its own surface.
   const Vec3f to = s.p + wi * distance - o;
+  if (!(dot(to, wi) > 0)) {  // the light point is nearer than the offset: nothing can lie between
+    shadows.push(o, wi, 0, contribution, path);
+    return;
+  }
   const float len = length(to);
   shadows.push(o, to * (1 / len), len * (1 - 1e-4f), contribution, path);
 }
