@@ -1,12 +1,15 @@
-// Direct light from sphere lights against the closed form: a Lambert plane of albedo a under a sphere of
-// radiance L, radius r, centre at distance d and height h over the shaded point (wholly above its horizon)
-// reflects a L (r / d)^2 (h / d). Every camera integrator's next-event estimation, BSDF-sampled emitter hits and
-// their MIS weights must add up to it; shadow rays towards the sphere must not be stopped by the sphere itself
-// (a shadow ray kept along the unoffset direction lost up to four fifths of them).
+// Direct light from area lights against closed forms, at the origin of a Lambert plane y = 0 of albedo a: under a
+// sphere of radiance L, radius r, centre at distance d and height h (wholly above the horizon) the plane reflects
+// a L (r / d)^2 (h / d); under a polygon, a / pi times L times Lambert's contour integral of its vertices. Every
+// camera integrator's next-event estimation, BSDF-sampled emitter hits and their MIS weights must add up to it,
+// and shadow rays towards the light must not be stopped by the light itself (a shadow ray kept along the
+// unoffset direction lost up to four fifths of a sphere's light).
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "render/render.h"
 #include "scene/builder.h"
@@ -17,37 +20,58 @@ using namespace torte::test;
 
 namespace {
 
-struct SphereOverPlane {
-  Vec3f centre;
-  float radius;
-  // The plane's radiance at the origin, seen by the probe camera.
-  double expected(double albedo) const {
-    const double d2 = double(length_squared(centre)), d = std::sqrt(d2);
-    return albedo * double(radius) * double(radius) / d2 * (double(centre.y) / d);
-  }
+constexpr float kAlbedo = 0.6f;
+constexpr double kPiD = 3.14159265358979323846;
+
+struct LitPlane {
+  std::string name;
+  ShapeDesc light;  // emitting radiance 1
+  double expected;  // the plane's radiance at the origin
 };
 
-constexpr float kAlbedo = 0.6f;
+LitPlane sphere_case(Vec3f centre, float radius) {
+  ShapeDesc light = sphere_shape(radius, translate(centre), matte(0.2f));
+  light.emission = Rgb(1);
+  const double d2 = double(length_squared(centre)), d = std::sqrt(d2);
+  return {"sphere of radius " + std::to_string(radius) + " at height " + std::to_string(centre.y), light,
+          kAlbedo * double(radius) * double(radius) / d2 * (double(centre.y) / d)};
+}
 
-// The plane y = 0 and the sphere light, plus a faint second sphere far away so that light selection has a
-// choice to make.
-std::shared_ptr<Scene> sphere_over_plane(const SphereOverPlane& g) {
+// A two-sided emitting polygon; the irradiance at the origin (normal +y) by Lambert's formula: half the sum, over
+// the edges, of the angle each subtends times the y component of the unit normal of the plane through it and the
+// origin.
+LitPlane polygon_case(const char* name, const std::vector<Vec3f>& vertices) {
+  ShapeDesc light;
+  light.kind = ShapeDesc::Kind::Mesh;
+  light.mesh = std::make_shared<TriangleMesh>(make_polygon(vertices));
+  light.material = matte(0.2f);
+  light.emission = Rgb(1);
+  light.two_sided = true;
+  double e = 0;
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    const Vec3f a = normalize(vertices[i]), b = normalize(vertices[(i + 1) % vertices.size()]);
+    const double angle = std::acos(std::clamp(double(dot(a, b)), -1.0, 1.0));
+    e += angle * double(normalize(cross(a, b)).y);
+  }
+  return {name, light, kAlbedo / kPiD * std::fabs(e) / 2};
+}
+
+// The plane and the light, plus a faint sphere far away so that light selection has a choice to make.
+std::shared_ptr<Scene> lit_plane(const LitPlane& c) {
   SceneBuilder b;
   ShapeDesc plane;
   plane.kind = ShapeDesc::Kind::Mesh;
   plane.mesh = std::make_shared<TriangleMesh>(make_polygon({{-8, 0, -8}, {-8, 0, 8}, {8, 0, 8}, {8, 0, -8}}));
   plane.material = matte(kAlbedo);
   b.add_shape(plane);
-  ShapeDesc light = sphere_shape(g.radius, translate(g.centre), matte(0.2f));
-  light.emission = Rgb(1);
-  b.add_shape(light);
+  b.add_shape(c.light);
   ShapeDesc faint = sphere_shape(0.01f, translate({7, 5, 7}), matte(0.2f));
   faint.emission = Rgb(1e-7f);
   b.add_shape(faint);
   return b.flatten();
 }
 
-// Mean of a 4x4 image of the plane around the origin, from beside the sphere (a 0.5-degree view).
+// Mean of a 4x4 image of the plane around the origin, from beside the light (a 0.5-degree view).
 double probe(const Scene& scene, RenderSettings s) {
   s.width = s.height = 4;
   s.max_depth = 1;
@@ -56,21 +80,21 @@ double probe(const Scene& scene, RenderSettings s) {
 
 }  // namespace
 
-TEST_CASE("Sphere lights over a plane: every camera integrator's direct light matches the closed form",
+TEST_CASE("Area lights over a plane: every camera integrator's direct light matches the closed form",
           "[light][render][analytic]") {
-  const SphereOverPlane cases[] = {
-      {{0, 0.4f, 0}, 0.2f},        // large and near: a 30-degree cone, most of it seen obliquely
-      {{0.4f, 0.4f, 0.1f}, 0.04f},  // a small bead off to the side
-      {{0.3f, 2, -0.2f}, 0.5f},     // far above
+  const LitPlane cases[] = {
+      sphere_case({0, 0.4f, 0}, 0.2f),          // large and near: a 30-degree cone, most of it seen obliquely
+      sphere_case({0.4f, 0.4f, 0.1f}, 0.04f),   // a small bead off to the side
+      sphere_case({0.3f, 2, -0.2f}, 0.5f),      // far above
+      polygon_case("square above", {{-0.3f, 0.5f, -0.3f}, {0.3f, 0.5f, -0.3f}, {0.3f, 0.5f, 0.3f}, {-0.3f, 0.5f, 0.3f}}),
+      polygon_case("steep quad beside", {{0.3f, 0.02f, 0.4f}, {0.3f, 0.02f, 0.9f}, {0.5f, 0.6f, 0.9f}, {0.5f, 0.6f, 0.4f}}),
   };
-  for (const SphereOverPlane& g : cases) {
-    const auto scene = sphere_over_plane(g);
-    const double expected = g.expected(kAlbedo);
-    INFO("sphere at (" << g.centre.x << ", " << g.centre.y << ", " << g.centre.z << "), radius " << g.radius
-                       << ": expected " << expected);
+  for (const LitPlane& c : cases) {
+    const auto scene = lit_plane(c);
+    INFO(c.name << ": expected " << c.expected);
     const auto check = [&](const char* what, RenderSettings s, double tolerance) {
       INFO(what);
-      CHECK(probe(*scene, s) == Approx(expected).epsilon(tolerance));
+      CHECK(probe(*scene, s) == Approx(c.expected).epsilon(tolerance));
     };
     RenderSettings s;
     s.spp = 256;
