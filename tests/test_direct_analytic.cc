@@ -1,6 +1,6 @@
 // Direct light from area lights against closed forms, at the origin of a Lambert plane y = 0 of albedo a: under a
 // sphere of radiance L, radius r, centre at distance d and height h (wholly above the horizon) the plane reflects
-// a L (r / d)^2 (h / d); under a polygon, a / pi times L times Lambert's contour integral of its vertices. Every
+// a L (r / d)^2 (h / d); under a disk facing it from straight above, a L r^2 / (r^2 + h^2); under a polygon, a / pi times L times Lambert's contour integral of its vertices. Every
 // camera integrator's next-event estimation, BSDF-sampled emitter hits and their MIS weights must add up to it,
 // and shadow rays towards the light must not be stopped by the light itself (a shadow ray kept along the
 // unoffset direction lost up to four fifths of a sphere's light).
@@ -35,6 +35,18 @@ LitPlane sphere_case(Vec3f centre, float radius) {
   const double d2 = double(length_squared(centre)), d = std::sqrt(d2);
   return {"sphere of radius " + std::to_string(radius) + " at height " + std::to_string(centre.y), light,
           kAlbedo * double(radius) * double(radius) / d2 * (double(centre.y) / d)};
+}
+
+// A two-sided emitting disk of radius r facing the plane's origin from height h straight above it (sampled by
+// area, as quadrics other than the sphere are): the plane reflects a L r^2 / (r^2 + h^2).
+LitPlane disk_case(float radius, float height) {
+  ShapeDesc light = sphere_shape(radius, translate({0, height, 0}) * rotate(90, {1, 0, 0}), matte(0.2f));
+  light.quadric.kind = QuadricKind::Disk;
+  light.emission = Rgb(1);
+  light.two_sided = true;
+  const double r2 = double(radius) * double(radius);
+  return {"disk of radius " + std::to_string(radius) + " at height " + std::to_string(height), light,
+          kAlbedo * r2 / (r2 + double(height) * double(height))};
 }
 
 // A two-sided emitting polygon; the irradiance at the origin (normal +y) by Lambert's formula: half the sum, over
@@ -86,6 +98,7 @@ TEST_CASE("Area lights over a plane: every camera integrator's direct light matc
       sphere_case({0, 0.4f, 0}, 0.2f),          // large and near: a 30-degree cone, most of it seen obliquely
       sphere_case({0.4f, 0.4f, 0.1f}, 0.04f),   // a small bead off to the side
       sphere_case({0.3f, 2, -0.2f}, 0.5f),      // far above
+      disk_case(0.3f, 0.5f),
       polygon_case("square above", {{-0.3f, 0.5f, -0.3f}, {0.3f, 0.5f, -0.3f}, {0.3f, 0.5f, 0.3f}, {-0.3f, 0.5f, 0.3f}}),
       polygon_case("steep quad beside", {{0.3f, 0.02f, 0.4f}, {0.3f, 0.02f, 0.9f}, {0.5f, 0.6f, 0.9f}, {0.5f, 0.6f, 0.4f}}),
   };
