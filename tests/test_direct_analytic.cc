@@ -25,16 +25,36 @@ constexpr double kPiD = 3.14159265358979323846;
 
 struct LitPlane {
   std::string name;
-  ShapeDesc light;  // emitting radiance 1
-  double expected;  // the plane's radiance at the origin
+  std::vector<ShapeDesc> lights;  // each emitting radiance 1
+  double expected;                // the plane's radiance at the origin
 };
 
-LitPlane sphere_case(Vec3f centre, float radius) {
+ShapeDesc emitting_sphere(Vec3f centre, float radius) {
   ShapeDesc light = sphere_shape(radius, translate(centre), matte(0.2f));
   light.emission = Rgb(1);
+  return light;
+}
+double sphere_radiance(Vec3f centre, float radius) {
   const double d2 = double(length_squared(centre)), d = std::sqrt(d2);
-  return {"sphere of radius " + std::to_string(radius) + " at height " + std::to_string(centre.y), light,
-          kAlbedo * double(radius) * double(radius) / d2 * (double(centre.y) / d)};
+  return kAlbedo * double(radius) * double(radius) / d2 * (double(centre.y) / d);
+}
+
+LitPlane sphere_case(Vec3f centre, float radius) {
+  return {"sphere of radius " + std::to_string(radius) + " at height " + std::to_string(centre.y),
+          {emitting_sphere(centre, radius)}, sphere_radiance(centre, radius)};
+}
+
+// Many lights for the light samplers to choose from: a 7 x 7 grid of small spheres 0.4 apart, all at height 0.5
+// (so none hides another from the plane's origin), one straight above it.
+LitPlane grid_case() {
+  LitPlane c{"a grid of 49 small spheres", {}, 0};
+  for (int i = -3; i <= 3; ++i)
+    for (int j = -3; j <= 3; ++j) {
+      const Vec3f centre(0.4f * float(i), 0.5f, 0.4f * float(j));
+      c.lights.push_back(emitting_sphere(centre, 0.05f));
+      c.expected += sphere_radiance(centre, 0.05f);
+    }
+  return c;
 }
 
 // A two-sided emitting disk of radius r facing the plane's origin from height h straight above it (sampled by
@@ -45,7 +65,7 @@ LitPlane disk_case(float radius, float height) {
   light.emission = Rgb(1);
   light.two_sided = true;
   const double r2 = double(radius) * double(radius);
-  return {"disk of radius " + std::to_string(radius) + " at height " + std::to_string(height), light,
+  return {"disk of radius " + std::to_string(radius) + " at height " + std::to_string(height), {light},
           kAlbedo * r2 / (r2 + double(height) * double(height))};
 }
 
@@ -65,7 +85,7 @@ LitPlane polygon_case(const char* name, const std::vector<Vec3f>& vertices) {
     const double angle = std::acos(std::clamp(double(dot(a, b)), -1.0, 1.0));
     e += angle * double(normalize(cross(a, b)).y);
   }
-  return {name, light, kAlbedo / kPiD * std::fabs(e) / 2};
+  return {name, {light}, kAlbedo / kPiD * std::fabs(e) / 2};
 }
 
 // The plane and the light, plus a faint sphere far away so that light selection has a choice to make.
@@ -76,7 +96,7 @@ std::shared_ptr<Scene> lit_plane(const LitPlane& c) {
   plane.mesh = std::make_shared<TriangleMesh>(make_polygon({{-8, 0, -8}, {-8, 0, 8}, {8, 0, 8}, {8, 0, -8}}));
   plane.material = matte(kAlbedo);
   b.add_shape(plane);
-  b.add_shape(c.light);
+  for (const ShapeDesc& light : c.lights) b.add_shape(light);
   ShapeDesc faint = sphere_shape(0.01f, translate({7, 5, 7}), matte(0.2f));
   faint.emission = Rgb(1e-7f);
   b.add_shape(faint);
@@ -98,6 +118,7 @@ TEST_CASE("Area lights over a plane: every camera integrator's direct light matc
       sphere_case({0, 0.4f, 0}, 0.2f),          // large and near: a 30-degree cone, most of it seen obliquely
       sphere_case({0.4f, 0.4f, 0.1f}, 0.04f),   // a small bead off to the side
       sphere_case({0.3f, 2, -0.2f}, 0.5f),      // far above
+      grid_case(),
       disk_case(0.3f, 0.5f),
       polygon_case("square above", {{-0.3f, 0.5f, -0.3f}, {0.3f, 0.5f, -0.3f}, {0.3f, 0.5f, 0.3f}, {-0.3f, 0.5f, 0.3f}}),
       polygon_case("steep quad beside", {{0.3f, 0.02f, 0.4f}, {0.3f, 0.02f, 0.9f}, {0.5f, 0.6f, 0.9f}, {0.5f, 0.6f, 0.4f}}),
