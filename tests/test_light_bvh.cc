@@ -36,7 +36,8 @@ struct TestScene {
   EmitterView view() const { return {meshes, {}, {}, {0, 0, 0}, 20}; }
 };
 
-// Many small one-sided quads, points and spots scattered in a 20-unit cube, plus `infinite` lights at infinity.
+// Many small one-sided quads, points and spots scattered in a 20-unit cube, plus `infinite` lights at infinity
+// (directional).
 TestScene make_scene(int quads, int points, int spots, int infinite, uint64_t seed) {
   TestScene s;
   Pcg32 rng(seed);
@@ -61,10 +62,13 @@ TestScene make_scene(int quads, int points, int spots, int infinite, uint64_t se
     l.cos_falloff_start = std::min(1.0f, l.cos_total + 0.05f);
     s.lights.push_back(l);
   }
+  // Directional lights: uniform infinite lights are left to BSDF sampling and never reach the sampler. Irradiance
+  // pi, what a uniform sky of radiance 1 gives.
   for (int i = 0; i < infinite; ++i) {
     Light l;
-    l.kind = LightKind::Infinite;
-    l.radiance = Rgb(1);
+    l.kind = LightKind::Distant;
+    l.direction = random_dir(rng);
+    l.radiance = Rgb(kPi);
     s.lights.push_back(l);
   }
   for (const Light& l : s.lights) s.power.push_back(light_power(s.view(), l));
@@ -241,6 +245,22 @@ TEST_CASE("light bvh: lights at infinity share a probability weighed by irradian
   CHECK(pmf == 1);
   CHECK(only.pmf(p, {0, 0, 0}, 0) == 1);
   CHECK(LightBvh().empty());
+
+  // A uniform infinite light is left to BSDF sampling: never chosen, pmf 0, no share taken from the others.
+  TestScene with_uniform = make_scene(10, 0, 0, 0, 4);
+  Light uniform;
+  uniform.kind = LightKind::Infinite;
+  uniform.radiance = Rgb(1);
+  with_uniform.lights.push_back(uniform);
+  with_uniform.power.push_back(light_power(with_uniform.view(), uniform));
+  const LightBvh u_bvh(with_uniform.view(), with_uniform.lights, with_uniform.power);
+  CHECK(u_bvh.infinite_probability(p, {0, 0, 0}) == 0);
+  CHECK(u_bvh.pmf(p, {0, 0, 0}, 10) == 0);
+  for (int k = 0; k < 64; ++k) CHECK(u_bvh.sample(p, {0, 0, 0}, (k + 0.5f) / 64, &pmf, &part) != 10);
+  const TestScene uniform_only{{}, {uniform}, {light_power(TestScene{}.view(), uniform)}};
+  const LightBvh u_only(uniform_only.view(), uniform_only.lights, uniform_only.power);
+  CHECK(u_only.sample(p, {0, 0, 0}, 0.5f, &pmf, &part) == -1);
+  CHECK(u_only.pmf(p, {0, 0, 0}, 0) == 0);
 }
 
 TEST_CASE("light bvh: the parts of a Patches light are leaves; their probabilities follow sampling",

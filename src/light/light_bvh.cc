@@ -208,6 +208,10 @@ LightBvh::LightBvh(const EmitterView& scene, std::span<const Light> lights, std:
   std::vector<uint32_t> ids;
   for (size_t i = 0; i < lights.size(); ++i) {
     if (!(power[i] > 0)) continue;
+    // A uniform infinite light is left to BSDF sampling, which samples its constant radiance as well as the BSDF
+    // allows (pbrt-v4's allowIncompletePDF): never chosen here, pmf 0, so BSDF-sampled rays that escape carry its
+    // light with MIS weight 1, and no light sample is spent on directions below the horizon.
+    if (lights[i].kind == LightKind::Infinite) continue;
     if (is_infinite_light(lights[i]) || lights[i].kind == LightKind::Distant) {
       infinite_.push_back(uint32_t(i));
       in_bvh_[i] = 2;

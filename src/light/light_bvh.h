@@ -57,7 +57,8 @@ class LightBvh {
  public:
   LightBvh() = default;
   /// Builds over `lights` (`power[i]` from light_power): bounded lights of positive power in the BVH (binned
-  /// surface-area-orientation heuristic), lights at infinity beside it.
+  /// surface-area-orientation heuristic), lights at infinity beside it; uniform infinite lights are left to BSDF
+  /// sampling (never chosen, pmf 0).
   LightBvh(const EmitterView& scene, std::span<const Light> lights, std::span<const float> power);
 
   bool empty() const { return light_count_ == 0; }

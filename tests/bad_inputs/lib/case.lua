@@ -25,6 +25,9 @@ end
 function M.picture(file)
   local s = torte.scene()
   s:add(torte.shape.sphere{radius = 1})
+  -- A second sphere beside it, so that occlusion and interreflection make noise: a lone convex sphere under a
+  -- uniform sky renders noise-free, and its file is then small enough for a cut in half to miss the pixel data.
+  s:add(torte.shape.sphere{radius = 0.6, transform = torte.translate(0.9, 0.9, -0.9)})
   s:add(torte.light.infinite{radiance = {1, 0.8, 0.6}})
   torte.render{scene = s, camera = torte.camera.perspective{eye = {0, 0, -3}, look_at = {0, 0, 0}},
                width = 64, height = 64, spp = 1}:write(file)
