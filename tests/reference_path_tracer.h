@@ -209,15 +209,9 @@ class PathTracer {
         if (consistent(ls.wi, wi_local) && lpdf > 0) {
           const Rgb f = bsdf.eval(wo_local, wi_local) * std::fabs(wi_local.z);
           if (!f.is_black()) {
-            // Aimed at the light point from the offset origin (a shadow ray along wi itself, moved sideways by
-            // the offset, could meet a curved emitter before the point).
             const Vec3f o = offset_origin(s.p, s.ng, ls.wi);
-            Ray shadow{o, ls.wi, kInfinity};
-            if (ls.distance != kInfinity) {
-              const Vec3f to = s.p + ls.wi * ls.distance - o;
-              const float len = length(to);
-              shadow = Ray{o, to * (1 / len), len * (1 - 1e-4f)};
-            }
+            const Ray shadow = ls.distance == kInfinity ? Ray{o, ls.wi, kInfinity}
+                                                        : ray_towards(o, s.p + ls.wi * ls.distance, ls.wi, 1e-4f);
             if (!scene.occluded(shadow)) {
               const float w = ls.delta ? 1.0f : power_heuristic(1, lpdf, 1, bsdf.pdf(wo_local, wi_local));
               L += f * ls.radiance * (w / lpdf);

@@ -1,9 +1,10 @@
 // Direct light from area lights against closed forms, at the origin of a Lambert plane y = 0 of albedo a: under a
 // sphere of radiance L, radius r, centre at distance d and height h (wholly above the horizon) the plane reflects
-// a L (r / d)^2 (h / d); under a disk facing it from straight above, a L r^2 / (r^2 + h^2); under a polygon, a / pi times L times Lambert's contour integral of its vertices. Every
-// camera integrator's next-event estimation, BSDF-sampled emitter hits and their MIS weights must add up to it,
-// and shadow rays towards the light must not be stopped by the light itself (a shadow ray kept along the
-// unoffset direction lost up to four fifths of a sphere's light).
+// a L (r / d)^2 (h / d); under a disk facing it from straight above, a L r^2 / (r^2 + h^2); under a polygon, a / pi
+// times L times Lambert's contour integral of its vertices. Every camera integrator's next-event estimation,
+// BSDF-sampled emitter hits and their MIS weights must add up to it, and shadow rays towards the light must not
+// be stopped by the light itself (a shadow ray kept along the unoffset direction lost up to four fifths of a
+// sphere's light).
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -18,4 +18,15 @@ inline Vec3f offset_origin(Vec3f p, Vec3f ng, Vec3f w) {
   return dot(w, ng) < 0 ? p - off : p + off;
 }
 
+/// The ray from `o` (a point already moved off its surface) to `target`, stopping the fraction `shorten` short of
+/// it. Aimed at the target itself (pbrt's SpawnRayTo): a ray along the direction w the offset was chosen for
+/// passes beside the target by the offset, and a curved surface there could stop it. A target behind o along w
+/// (nearer than the offset) gives an empty ray along w (t_max 0), which nothing occludes.
+inline Ray ray_towards(Vec3f o, Vec3f target, Vec3f w, float shorten) {
+  const Vec3f d = target - o;
+  if (!(dot(d, w) > 0)) return {o, w, 0};
+  const float len = length(d);
+  return {o, d * (1 / len), len * (1 - shorten)};
+}
+
 }  // namespace torte

@@ -66,15 +66,9 @@ void push_connection(ShadowQueue& shadows, const BdptVertex& from, Vec3f wi, Vec
   // hit distances err by up to a few 1e-4 (relative) on long rays, so stopping 1e-4 short of a point on a surface
   // let that surface occlude it (the Cornell box's block tops lost a fifth of the ceiling's indirect light to
   // bdpt's connections; with the end offset alone, a sixteenth; bench/RESULTS.md 2026-12-04).
-  // Aimed at the target from o (along wi itself the offset would shift the ray sideways, and a curved surface
-  // near the target could then occlude it; render/shade.h, push_shadow_ray).
-  const Vec3f d = offset_origin(to, to_ng, -wi) - o;
-  if (!(dot(d, wi) > 0)) {  // the ends are nearer than their offsets: nothing can lie between
-    shadows.push(o, wi, 0, value, path);
-    return;
-  }
-  const float len = length(d);
-  shadows.push(o, d * (1 / len), len * (1 - 1e-3f), value, path);
+  // Aimed at the target from o (ray_towards: along wi the offset would shift the ray sideways).
+  const Ray r = ray_towards(o, offset_origin(to, to_ng, -wi), wi, 1e-3f);
+  shadows.push(r.o, r.d, r.t_max, value, path);
 }
 
 }  // namespace

@@ -114,16 +114,10 @@ inline void push_shadow_ray(ShadowQueue& shadows, const SurfaceHit& s, Vec3f wi,
     shadows.push(o, wi, kInfinity, contribution, path);
     return;
   }
-  // Aimed from the offset origin at the light point, stopping just short of it (pbrt's SpawnRayTo). Keeping wi
-  // moves the ray sideways by the offset, and a curved or obliquely seen emitter then lies nearer along it than
-  // `distance` minus the offset: a sphere light lost up to four fifths of its samples to its own surface.
-  const Vec3f to = s.p + wi * distance - o;
-  if (!(dot(to, wi) > 0)) {  // the light point is nearer than the offset: nothing can lie between
-    shadows.push(o, wi, 0, contribution, path);
-    return;
-  }
-  const float len = length(to);
-  shadows.push(o, to * (1 / len), len * (1 - 1e-4f), contribution, path);
+  // Aimed at the light point (ray_towards): along wi the offset moved the ray sideways, and a sphere light's own
+  // surface stopped up to four fifths of the rays meant for it.
+  const Ray r = ray_towards(o, s.p + wi * distance, wi, 1e-4f);
+  shadows.push(r.o, r.d, r.t_max, contribution, path);
 }
 
 // Continues the path of queue slot `slot` with the BSDF sample `bs` (drawn in `frame`, wo_local being the
