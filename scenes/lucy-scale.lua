@@ -6,7 +6,7 @@
 --                               [data=<meshes directory>] [width=800] [height=600] [spp=16] [max_depth=5]
 --                               [integrator=path|direct|lt] [output=out/lucy-scale.exr]
 --                               [save_ply=<directory>] [ply_dir=<directory>]
---                               [bvh_layout=auto|default|compact] [memory_budget=<size, e.g. 1.5GB>]
+--                               [bvh_layout=auto|default|packed|compact] [memory_budget=<size, e.g. 1.5GB>]
 --
 -- Triangles: the hero is subdivided `levels` times (x4 each), the companions max(levels - 2, 0) times.
 --   levels=4 (default): Lucy 99,970 x 256 = 25,592,320 + dragon 100,000 x 16 = 1,600,000
@@ -18,7 +18,8 @@
 -- `save_ply` writes every grown model to <directory>/<model>.ply (mesh:save); `ply_dir` loads them from there
 -- instead of growing them (scripts/bench-lucy-ply.sh measures that path's memory).
 -- `bvh_layout` and `memory_budget` choose the triangles' layout (torte.scene in docs/lua-api.md): with
--- memory_budget=1.5GB the default layout's estimate exceeds the budget and the compact one is built.
+-- memory_budget=1.5GB the default layout's estimate exceeds the budget and the packed one is built;
+-- memory_budget=1GB leaves only the compact one.
 local torte = require "torte"
 
 -- This script's directory, so the default data path works from any current directory.

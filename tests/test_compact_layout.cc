@@ -1,6 +1,6 @@
-// The compact triangle layout in a scene (accel/accel_options.h, accel/compact_bvh.h): its bytes per triangle
-// against the default layout's (the memory tests of issue 25), hits and surfaces equal to the default layout's,
-// the same image, and the automatic choice by memory budget.
+// The packed and compact triangle layouts in a scene (accel/accel_options.h, accel/compact_bvh.h): their bytes
+// per triangle against the default layout's (the memory tests of issue 25), hits and surfaces equal to the default
+// layout's, the same image, and the automatic choice by memory budget.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "core/memory_budget.h"
 #include "core/rng.h"
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_normals.h"
@@ -73,27 +74,42 @@ TEST_CASE("compact layout: the dragon's bytes per triangle in both layouts", "[c
   REQUIRE(mesh.triangle_count() == 100000);
   const double n = 100000.0;
   const auto def = scene_of(mesh, BvhLayout::kDefault);
+  const auto packed = scene_of(mesh, BvhLayout::kPacked);
   const auto compact = scene_of(mesh, BvhLayout::kCompact);
   REQUIRE(def->accel().layout() == BvhLayout::kDefault);
+  REQUIRE(packed->accel().layout() == BvhLayout::kPacked);
   REQUIRE(compact->accel().layout() == BvhLayout::kCompact);
   const ShapeSet::TriangleMemory md = def->accel().root().triangle_memory();
+  const ShapeSet::TriangleMemory mp = packed->accel().root().triangle_memory();
   const ShapeSet::TriangleMemory mc = compact->accel().root().triangle_memory();
-  INFO("default: nodes " << md.nodes / n << ", leaves " << md.leaves / n << "; compact: nodes " << mc.nodes / n
-                         << ", leaves " << mc.leaves / n << " B/tri");
+  INFO("default: nodes " << md.nodes / n << ", leaves " << md.leaves / n << "; packed: nodes " << mp.nodes / n
+                         << ", leaves " << mp.leaves / n << "; compact: nodes " << mc.nodes / n << ", leaves "
+                         << mc.leaves / n << " B/tri");
   // Default: 8-wide nodes (6.8 measured), leaf vertices 36 + the leaf-start bitmap; all in <= 64 with the mesh's
-  // indices and normals. Compact: nodes of 128 bytes (half), packed leaves (18.9 measured: a leaf's header and
-  // 8-bit indices, 4 + 3 bytes per triangle, and its distinct vertices, 12 bytes each).
+  // indices and normals. Packed: the same nodes, packed leaves (18.9 measured: a leaf's header and 8-bit indices,
+  // 4 + 3 bytes per triangle, and its distinct vertices, 12 bytes each). Compact: nodes of 128 bytes (half),
+  // packed leaves.
   CHECK(md.nodes / n <= 8.0);
   CHECK(md.leaves / n <= 36.2);
+  CHECK(mp.nodes == md.nodes);
+  CHECK(mp.leaves / n <= 19.0);
   CHECK(mc.nodes / n <= 4.0);
-  CHECK(mc.leaves / n <= 19.0);
+  CHECK(mc.leaves == mp.leaves);
   CHECK(mc.index_map == 0);
+  CHECK(mp.index_map == 0);
   const double total_default = double(def->accel_bytes() + def->geometry_bytes()) / n;
+  const double total_packed = double(packed->accel_bytes() + packed->geometry_bytes()) / n;
   const double total_compact = double(compact->accel_bytes() + compact->geometry_bytes()) / n;
-  INFO("finished scene: default " << total_default << ", compact " << total_compact << " B/tri");
+  INFO("finished scene: default " << total_default << ", packed " << total_packed << ", compact " << total_compact
+                                  << " B/tri");
   CHECK(total_default <= 64.0);
+  CHECK(total_packed <= 44.0);
   CHECK(total_compact <= 40.5);
-  CHECK(compact->meshes[0].x.empty());  // its positions: the leaves' copy
+  CHECK(packed->meshes[0].x.empty());  // its positions: the leaves' copy
+  CHECK(compact->meshes[0].x.empty());
+  // The budget's estimates (accel_options.h) cover what the layouts take.
+  CHECK((md.nodes + md.leaves) / n <= double(kDefaultLayoutBytesPerTriangle));
+  CHECK((mp.nodes + mp.leaves) / n <= double(kPackedLayoutBytesPerTriangle));
 
   // Placed (the script's mesh shared): the same leaves, plus the map (4).
   auto source = std::make_shared<const TriangleMesh>(mesh);
@@ -102,9 +118,9 @@ TEST_CASE("compact layout: the dragon's bytes per triangle in both layouts", "[c
   placed.objects.resize(1);
   placed.accel_options.layout = BvhLayout::kCompact;
   placed.finalize();
-  const ShapeSet::TriangleMemory mp = placed.accel().root().triangle_memory();
-  INFO("placed compact: nodes " << mp.nodes / n << ", leaves " << mp.leaves / n << ", map " << mp.index_map / n);
-  CHECK(mp.leaves / n <= 19.0);
+  const ShapeSet::TriangleMemory ml = placed.accel().root().triangle_memory();
+  INFO("placed compact: nodes " << ml.nodes / n << ", leaves " << ml.leaves / n << ", map " << ml.index_map / n);
+  CHECK(ml.leaves / n <= 19.0);
   CHECK(double(placed.accel_bytes() + placed.meshes[0].own_bytes()) / n <= 32.5);
 }
 
@@ -115,21 +131,23 @@ TEST_CASE("compact layout: the dragon's hits and surfaces equal the default layo
   }
   const TriangleMesh mesh = load_mesh(kDragon);
   const auto def = scene_of(mesh, BvhLayout::kDefault);
-  const auto compact = scene_of(mesh, BvhLayout::kCompact);
-  check_same_hits(*def, *compact, 20000, 4000);
-  // Placed meshes and several meshes per set: the leaves' own vertex copy (in world space).
-  auto source = std::make_shared<const TriangleMesh>(mesh);
-  Scene pd, pc;
-  for (Scene* s : {&pd, &pc}) {
-    s->meshes.push_back(make_placed(source, translate({0.1f, 0, 0}) * scale({2.0f, 2.0f, 2.0f})));
-    s->meshes.push_back(make_polygon({{-1, -0.2f, -1}, {1, -0.2f, -1}, {1, -0.2f, 1}, {-1, -0.2f, 1}}));
-    s->objects.resize(2);
+  for (const BvhLayout layout : {BvhLayout::kPacked, BvhLayout::kCompact}) {
+    INFO(bvh_layout_name(layout));
+    check_same_hits(*def, *scene_of(mesh, layout), 20000, 4000);
+    // Placed meshes and several meshes per set: the leaves' own vertex copy (in world space).
+    auto source = std::make_shared<const TriangleMesh>(mesh);
+    Scene pd, pc;
+    for (Scene* s : {&pd, &pc}) {
+      s->meshes.push_back(make_placed(source, translate({0.1f, 0, 0}) * scale({2.0f, 2.0f, 2.0f})));
+      s->meshes.push_back(make_polygon({{-1, -0.2f, -1}, {1, -0.2f, -1}, {1, -0.2f, 1}, {-1, -0.2f, 1}}));
+      s->objects.resize(2);
+    }
+    pd.accel_options.layout = BvhLayout::kDefault;
+    pc.accel_options.layout = layout;
+    pd.finalize();
+    pc.finalize();
+    check_same_hits(pd, pc, 20000, 4000);
   }
-  pd.accel_options.layout = BvhLayout::kDefault;
-  pc.accel_options.layout = BvhLayout::kCompact;
-  pd.finalize();
-  pc.finalize();
-  check_same_hits(pd, pc, 20000, 4000);
 }
 
 TEST_CASE("compact layout: a render equals the default layout's image", "[compact][render]") {
@@ -157,27 +175,33 @@ TEST_CASE("compact layout: a render equals the default layout's image", "[compac
   panel.emission = Rgb(3);
   panel.two_sided = true;
   b.add_shape(panel);
-  AccelOptions def{.layout = BvhLayout::kDefault}, compact{.layout = BvhLayout::kCompact};
-  const auto sd = b.flatten(nullptr, &def), sc = b.flatten(nullptr, &compact);
-  REQUIRE(sc->accel().layout() == BvhLayout::kCompact);
+  AccelOptions def{.layout = BvhLayout::kDefault};
+  const auto sd = b.flatten(nullptr, &def);
   RenderSettings s;
   s.width = 48;
   s.height = 32;
   s.spp = 8;
   s.max_depth = 4;
   const CameraDesc camera = camera_at({0.3f, 0.8f, -2.5f}, {0, -0.1f, 0}, 45);
-  const Image a = render_view(*sd, camera, s).image, c = render_view(*sc, camera, s).image;
-  size_t same = 0;
-  for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x) {
-      const Rgb pa = a.at(x, y), pc = c.at(x, y);
-      same += pa.r == pc.r && pa.g == pc.g && pa.b == pc.b;
-    }
-  // The same hits give the same paths: bitwise, but for rays through shared edges, which may take either
-  // triangle (their paths differ from there on).
-  INFO(same << " of " << a.width * a.height << " pixels bitwise equal");
-  CHECK(same >= size_t(a.width * a.height) * 97 / 100);
-  CHECK(max_tile_error(c, a, 16) < 0.02);
+  const Image a = render_view(*sd, camera, s).image;
+  for (const BvhLayout layout : {BvhLayout::kPacked, BvhLayout::kCompact}) {
+    INFO(bvh_layout_name(layout));
+    AccelOptions other{.layout = layout};
+    const auto sc = b.flatten(nullptr, &other);
+    REQUIRE(sc->accel().layout() == layout);
+    const Image c = render_view(*sc, camera, s).image;
+    size_t same = 0;
+    for (int y = 0; y < a.height; ++y)
+      for (int x = 0; x < a.width; ++x) {
+        const Rgb pa = a.at(x, y), pc = c.at(x, y);
+        same += pa.r == pc.r && pa.g == pc.g && pa.b == pc.b;
+      }
+    // The same hits give the same paths: bitwise, but for rays through shared edges, which may take either
+    // triangle (their paths differ from there on).
+    INFO(same << " of " << a.width * a.height << " pixels bitwise equal");
+    CHECK(same >= size_t(a.width * a.height) * 97 / 100);
+    CHECK(max_tile_error(c, a, 16) < 0.02);
+  }
 }
 
 TEST_CASE("compact layout: chosen by the memory budget", "[compact]") {
@@ -195,7 +219,18 @@ TEST_CASE("compact layout: chosen by the memory budget", "[compact]") {
   CHECK(build({.layout = BvhLayout::kAuto, .memory_budget = uint64_t(1) << 50}) == BvhLayout::kDefault);
   CHECK(build({.layout = BvhLayout::kDefault, .memory_budget = 1024}) == BvhLayout::kDefault);
   CHECK(build({.layout = BvhLayout::kCompact}) == BvhLayout::kCompact);
+  CHECK(build({.layout = BvhLayout::kPacked}) == BvhLayout::kPacked);
   CHECK(build({}) == BvhLayout::kDefault);  // the process's limit: 3/4 of the machine's memory
   CHECK(parse_bvh_layout("compact") == BvhLayout::kCompact);
-  CHECK_THROWS_WITH(parse_bvh_layout("tiny"), Catch::Contains("\"auto\", \"default\" or \"compact\""));
+  CHECK(parse_bvh_layout("packed") == BvhLayout::kPacked);
+  CHECK_THROWS_WITH(parse_bvh_layout("tiny"), Catch::Contains("\"auto\", \"default\", \"packed\" or \"compact\""));
+  // The fastest layout that fits: 100 M triangles against budgets between the estimates (900 MB apart, far more
+  // than the resident memory can move between two calls).
+  const uint64_t tris = 100'000'000, resident = resident_memory();
+  const auto pick = [&](uint64_t bytes_per_triangle) {
+    return resolve_layout({.layout = BvhLayout::kAuto, .memory_budget = resident + tris * bytes_per_triangle}, tris);
+  };
+  CHECK(pick(kDefaultLayoutBytesPerTriangle + 5) == BvhLayout::kDefault);
+  CHECK(pick((kDefaultLayoutBytesPerTriangle + kPackedLayoutBytesPerTriangle) / 2) == BvhLayout::kPacked);
+  CHECK(pick(kPackedLayoutBytesPerTriangle - 5) == BvhLayout::kCompact);
 }

@@ -32,7 +32,7 @@ torte.simd = {}
 torte.texture = {}
 torte.voxel = {}
 
----A new, empty scene (a `torte.scene` userdata with the methods `add`, `frame` and `stats`). The keys choose how its triangles are laid out for tracing: the default layout (8-wide nodes of float boxes, 6.8 bytes per triangle, and leaves that copy each triangle's vertices, 36) or the compact one (nodes whose child boxes are 8-bit offsets on a per-node grid, 3.4, and leaves that carry each leaf's distinct vertices once with 8-bit indices into them, about 19), slower to trace (`bench/RESULTS.md`, 2026-12-06). The summary after a render and `--stats` name the layout. `torte.render` takes the same keys for one render.
+---A new, empty scene (a `torte.scene` userdata with the methods `add`, `frame` and `stats`). The keys choose how its triangles are laid out for tracing: the default layout (8-wide nodes of float boxes, 6.8 bytes per triangle, and leaves that copy each triangle's vertices, 36), the packed one (the same nodes, and leaves that carry each leaf's distinct vertices once with 8-bit indices into them, about 19; a few percent slower to trace) or the compact one (packed leaves, and nodes whose child boxes are 8-bit offsets on a per-node grid, 3.4; up to about 20 % slower; `bench/RESULTS.md`, 2026-12-07). The summary after a render and `--stats` name the layout. `torte.render` takes the same keys for one render.
 ---@param args torte.scene.args
 ---@return torte.scene
 function torte.scene(args) end
@@ -636,7 +636,7 @@ function torte.sandboxed() end
 function torte.clock() end
 
 ---@class torte.scene.args
----@field bvh_layout? string the triangles' layout; `"auto"`: compact when the process's resident memory plus 44 bytes per triangle of the scene would exceed `memory_budget` (default "auto")
+---@field bvh_layout? string the triangles' layout, from the fastest to the smallest; `"auto"`: default when the process's resident memory plus 44 bytes per triangle of the scene fits `memory_budget`, else packed when 26 bytes per triangle fit, else compact (default "auto")
 ---@field memory_budget? any what `"auto"` compares with (default the process's memory limit (`--max-memory`))
 
 ---@class torte.instance.args

@@ -47,7 +47,7 @@ class Aggregate {
              const std::vector<VoxelGridAccel>& grids, std::vector<std::unique_ptr<Prototype>>& prototypes,
              const std::vector<Instance>& instances, ProgressCounter* progress = nullptr,
              const AccelOptions& options = {});
-  /// The triangles' layout the build chose (kDefault or kCompact).
+  /// The triangles' layout the build chose (kDefault, kPacked or kCompact).
   BvhLayout layout() const { return layout_; }
 
   /// The scene's own (non-instanced) geometry.
@@ -74,8 +74,8 @@ class Aggregate {
   const std::vector<Instance>* instances_ = nullptr;
   std::vector<Bounds3f> instance_bounds_;  // world bounds, for the entry distance of each candidate
   Bvh2 instance_bvh_;
-  uint32_t instance_depth_ = 1;
-  BvhLayout layout_ = BvhLayout::kDefault;  // stack entries a walk of instance_bvh_ needs: its depth in nodes
+  uint32_t instance_depth_ = 1;  // stack entries a walk of instance_bvh_ needs: its depth in nodes
+  BvhLayout layout_ = BvhLayout::kDefault;
   Bounds3f bounds_;
 };
 

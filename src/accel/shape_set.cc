@@ -51,8 +51,8 @@ void ShapeSet::build(std::vector<TriangleMesh>& meshes, const std::vector<Quadri
   tri_bvh_ = build_wide_bvh<kDefaultBvhWidth>(input_triangles, bounds_of, options);
   report(input_triangles - tri_bvh_.prim_indices.size());  // triangles the tree left out (empty bounds)
   const std::span<const TriangleMesh> mesh_span(meshes);
-  // Either layout's leaves come from the tree's order before store_in_leaf_order consumes it; the compact one's
-  // rewrite the tree's leaf references (to their blocks) before its nodes are quantised.
+  // Every layout's leaves come from the tree's order before store_in_leaf_order consumes it; packed leaves
+  // rewrite the tree's leaf references (to their blocks), before the compact layout quantises the nodes.
   if (layout == BvhLayout::kDefault) {
     tri_leaves_ = make_triangle_leaves(tri_bvh_, mesh_span, mesh_first);
   } else {
@@ -191,18 +191,14 @@ bool ShapeSet::occluded_one(const Ray& ray) const {
 }
 
 void ShapeSet::intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const {
-  if (triangle_count() > 0 && layout_ == BvhLayout::kCompact) {
-    if (kernel != TraceKernel::kSingle) {
-      intersect_closest_packets(ctri_bvh_, ptri_leaves_, rays, count, hits, int(kernel));
-    } else {
-      intersect_closest(ctri_bvh_, ptri_leaves_, rays, count, hits);
-    }
-  } else if (triangle_count() > 0) {
-    if (kernel != TraceKernel::kSingle) {
-      intersect_closest_packets(tri_bvh_, tri_leaves_, rays, count, hits, int(kernel));
-    } else {
-      intersect_closest(tri_bvh_, tri_leaves_, rays, count, hits);
-    }
+  if (triangle_count() > 0) {
+    with_layout([&](const auto& bvh, const auto& leaves) {
+      if (kernel != TraceKernel::kSingle) {
+        intersect_closest_packets(bvh, leaves, rays, count, hits, int(kernel));
+      } else {
+        intersect_closest(bvh, leaves, rays, count, hits);
+      }
+    });
   } else {
     std::fill(hits, hits + count, Hit{});
   }
@@ -226,18 +222,14 @@ void ShapeSet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) c
 }
 
 void ShapeSet::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const {
-  if (triangle_count() > 0 && layout_ == BvhLayout::kCompact) {
-    if (kernel != TraceKernel::kSingle) {
-      intersect_any_packets(ctri_bvh_, ptri_leaves_, rays, count, blocked, int(kernel));
-    } else {
-      intersect_any(ctri_bvh_, ptri_leaves_, rays, count, blocked);
-    }
-  } else if (triangle_count() > 0) {
-    if (kernel != TraceKernel::kSingle) {
-      intersect_any_packets(tri_bvh_, tri_leaves_, rays, count, blocked, int(kernel));
-    } else {
-      intersect_any(tri_bvh_, tri_leaves_, rays, count, blocked);
-    }
+  if (triangle_count() > 0) {
+    with_layout([&](const auto& bvh, const auto& leaves) {
+      if (kernel != TraceKernel::kSingle) {
+        intersect_any_packets(bvh, leaves, rays, count, blocked, int(kernel));
+      } else {
+        intersect_any(bvh, leaves, rays, count, blocked);
+      }
+    });
   } else {
     std::fill(blocked, blocked + count, uint8_t(0));
   }
@@ -270,10 +262,10 @@ SurfaceHit ShapeSet::surface(const Hit& hit, uint32_t object_base) const {
   const TriangleRef ref = triangle_ref(hit.prim);
   const TriangleMesh& mesh = (*meshes_)[ref.mesh];
   Vec3f p[3];
-  if (layout_ == BvhLayout::kCompact) {
-    ptri_leaves_.triangle(hit.prim, p);
-  } else {
+  if (layout_ == BvhLayout::kDefault) {
     tri_leaves_.triangle(hit.prim, p);
+  } else {
+    ptri_leaves_.triangle(hit.prim, p);
   }
   return triangle_surface(mesh, mesh.triangle(ref.local), p, hit.b1, hit.b2, object_base + ref.mesh);
 }

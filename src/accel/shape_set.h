@@ -7,9 +7,10 @@
 // 61.0 B/tri, checked by test_geometry_set.cc. Sets of several meshes, or of placed meshes (a scene's, which
 // share the script's arrays: TriangleMesh::make_placed), add 4 B/tri (each triangle's place in the meshes
 // concatenated) and keep only their world normals.
-// The compact layout (accel/compact_bvh.h, picked by accel_options.h) holds the dragon in 40.3 B/tri: quantised
-// nodes 3.4, packed leaves (each leaf's distinct vertices and 8-bit indices, accel/packed_leaves.h) 18.9, indices
-// 12, normals 6 (test_compact_layout.cc); placed or several meshes add the 4 B/tri map.
+// The packed layout (picked by accel_options.h) keeps the wide nodes with packed leaves (each leaf's distinct
+// vertices and 8-bit indices, accel/packed_leaves.h): 18.9 B/tri for the leaves, 43.7 in all. The compact layout
+// (accel/compact_bvh.h) quantises the nodes too and holds the dragon in 40.3 B/tri: nodes 3.4, leaves 18.9,
+// indices 12, normals 6 (test_compact_layout.cc); placed or several meshes add the 4 B/tri map.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -40,10 +41,10 @@ class ShapeSet {
   /// Builds the BVHs over `meshes` then `quadrics` (local objects 0.. in that order). Reorders each mesh's
   /// triangles into the BVH's leaf order, so triangle numbers in hits are leaf positions and a one-mesh set keeps
   /// no index map; afterwards surface() reads positions from the leaves. `progress` gets 3 units per triangle.
-  /// `layout`: kDefault or kCompact (accel/accel_options.h; kAuto is resolved by the caller).
+  /// `layout`: kDefault, kPacked or kCompact (accel/accel_options.h; kAuto is resolved by the caller).
   void build(std::vector<TriangleMesh>& meshes, const std::vector<Quadric>& quadrics,
              ProgressCounter* progress = nullptr, BvhLayout layout = BvhLayout::kDefault);
-  /// The triangles' layout: kDefault or kCompact.
+  /// The triangles' layout: kDefault, kPacked or kCompact.
   BvhLayout layout() const { return layout_; }
 
   // Triangles in the BVH (all but those with empty bounds, which nothing can hit).
@@ -75,8 +76,8 @@ class ShapeSet {
   struct TriangleMemory {
     size_t nodes = 0, leaves = 0, index_map = 0;  // wide nodes; leaf vertices + leaf starts; tri_ref_ + mesh_first_
   };
-  /// The triangle BVH itself (statistics: depth, leaves, SAH cost): the default layout's (empty in the compact
-  /// one), and the compact layout's (empty in the default one).
+  /// The triangle BVH itself (statistics: depth, leaves, SAH cost): the default and packed layouts' (empty in
+  /// the compact one), and the compact layout's (empty in the others).
   const WideBvh<kDefaultBvhWidth>& triangle_bvh() const { return tri_bvh_; }
   const CompactBvh& compact_bvh() const { return ctri_bvh_; }
   TriangleMemory triangle_memory() const {
@@ -114,8 +115,17 @@ class ShapeSet {
   }
   // All triangles of all meshes in one wide BVH (SIMD kernels, simd/traverse.h); the few analytic shapes in a
   // scalar BVH2 of their own, traced after it with t_max clipped to the triangle hit. The default layout fills
-  // tri_bvh_ and tri_leaves_, the compact one ctri_bvh_ and ptri_leaves_.
+  // tri_bvh_ and tri_leaves_, the packed one tri_bvh_ and ptri_leaves_, the compact one ctri_bvh_ and ptri_leaves_.
   BvhLayout layout_ = BvhLayout::kDefault;
+  /// Calls f(nodes, leaves) with the layout's pair (one kernel instantiation each, simd/traverse.h).
+  template <class F>
+  void with_layout(const F& f) const {
+    switch (layout_) {
+      case BvhLayout::kCompact: return f(ctri_bvh_, ptri_leaves_);
+      case BvhLayout::kPacked: return f(tri_bvh_, ptri_leaves_);
+      default: return f(tri_bvh_, tri_leaves_);
+    }
+  }
   WideBvh<kDefaultBvhWidth> tri_bvh_;
   TriangleLeaves tri_leaves_;
   CompactBvh ctri_bvh_;
