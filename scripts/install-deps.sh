@@ -7,7 +7,7 @@
 set -euo pipefail
 packages=(cmake clang g++ make pkg-config ninja-build libhwy-dev libtbb-dev libopenimageio-dev liblua5.4-dev
           libbenchmark-dev catch2 zlib1g-dev liblz4-dev libxxhash-dev libopencolorio-dev
-          openimageio-tools openmpi-bin libopenmpi-dev libcli11-dev
+          openimageio-tools openmpi-bin libopenmpi-dev libcli11-dev libopenexr-dev libpng-dev
           libtinygltf-dev nlohmann-json3-dev libstb-dev time)  # tiny_gltf.h needs nlohmann/json and stb to build; OIIO's CMake config checks that /usr/bin/iconvert etc. exist; time: GNU time for scripts/gallery.sh
 for arg in "$@"; do
   case "$arg" in

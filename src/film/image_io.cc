@@ -4,10 +4,8 @@
 #include <OpenImageIO/strutil.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <filesystem>
-#include <system_error>
+#include <variant>
 #include <vector>
 
 #include "core/error.h"
@@ -16,28 +14,13 @@
 #include "core/quiet_stderr.h"
 #include "core/text.h"
 #include "film/image_header_check.h"
+#include "film/image_write_common.h"
+#include "film/image_write_exr.h"
+#include "film/image_write_png.h"
 
 namespace torte {
 
-namespace fs = std::filesystem;
-
-float linear_to_srgb(float v) {
-  if (!(v > 0)) return 0;  // also maps NaN to 0
-  if (v >= 1) return 1;
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
-}
-
-float srgb_to_linear(float v) {
-  if (!(v > 0)) return 0;
-  if (v >= 1) return 1;
-  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
-
 namespace {
-
-[[noreturn]] void write_error(const std::string& path, const std::string& reason) {
-  throw Error("cannot write image '" + path + "': " + reason);
-}
 
 [[noreturn]] void read_error(const std::string& path, const std::string& reason) {
   throw Error("cannot read image '" + escape_text(path) + "': " + reason);
@@ -46,84 +29,44 @@ namespace {
 // OIIO's messages can span lines, repeat a line and end in a newline; keep ours one line.
 std::string one_line(const std::string& s) { return one_line_message(s, "no message from OpenImageIO"); }
 
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
 }  // namespace
 
 void write_image(const Image& image, const std::string& path, const WriteOptions& options) {
-  if (image.width <= 0 || image.height <= 0 || image.pixels.size() != size_t(image.width) * size_t(image.height))
-    write_error(path, "the image is empty or its pixel count does not match " + std::to_string(image.width) + "x" +
-                          std::to_string(image.height));
+  check_image_to_write(image, path);
   const std::string ext = lower_extension(path);
+  if (ext == ".exr") return write_exr(image, path);
+  if (ext == ".png") return write_png(image, path, options);
   if (ext.empty()) write_error(path, "no file extension to choose the format from");
-  // Ask OIIO for a writer before touching the file system, so an unknown extension creates no directories.
+  // Every other format through OpenImageIO. Ask it for a writer before touching the file system, so an unknown
+  // extension creates no directories.
   auto out = OIIO::ImageOutput::create(path);
   if (!out) write_error(path, one_line(OIIO::geterror()));
-
-  const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty()) {
-    std::error_code ec;
-    fs::create_directories(parent, ec);
-    if (ec) write_error(path, "cannot create directory '" + parent.string() + "': " + ec.message());
-  }
+  create_parent_directories(path);
 
   const int w = image.width, h = image.height;
   const size_t n = image.pixels.size();
-  const bool linear = ext == ".exr" || ext == ".hdr";
-  std::vector<float> linear_data;
-  std::vector<unsigned char> display_data;
   OIIO::ImageSpec spec;
+  std::vector<float> linear_data;
+  std::vector<uint8_t> display_data;
   const void* data = nullptr;
   OIIO::TypeDesc data_type;
+  const bool linear = ext == ".hdr";
   if (linear) {
-    // EXR keeps the layers as further channels named <layer>.<channel>, as multi-layer EXR readers expect.
-    const bool exr = ext == ".exr";
-    std::vector<std::string> names{"R", "G", "B"};
-    std::vector<const ImageLayer*> layers;
-    if (exr)
-      for (const ImageLayer& l : image.layers) {
-        if (l.channels.empty() || l.values.size() != n * l.channels.size())
-          write_error(path, "layer '" + l.name + "' does not hold " + std::to_string(l.channels.size()) +
-                                " values for each of the " + std::to_string(n) + " pixels");
-        layers.push_back(&l);
-        for (const std::string& c : l.channels) names.push_back(l.name + "." + c);
-      }
-    const size_t nc = names.size();
-    spec = OIIO::ImageSpec(w, h, int(nc), OIIO::TypeDesc::FLOAT);
-    spec.channelnames = names;
+    spec = OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT);
     spec.attribute("oiio:ColorSpace", "Linear");
-    if (exr) spec.attribute("compression", "zip");
-    linear_data.resize(nc * n);
-    // RGBE has no sign and no NaN/inf: such values would come back as garbage, so they are written as 0 there.
-    // EXR stores every float as it is.
-    const bool rgbe = ext == ".hdr";
+    // RGBE has no sign and no NaN/inf: such values would come back as garbage, so they are written as 0.
+    linear_data.resize(3 * n);
     for (size_t i = 0; i < n; ++i) {
       const Rgb& p = image.pixels[i];
       const float c[3] = {p.r, p.g, p.b};
-      float* out_px = &linear_data[nc * i];
-      for (int k = 0; k < 3; ++k) out_px[k] = rgbe && !(c[k] > 0 && std::isfinite(c[k])) ? 0.0f : c[k];
-      size_t k = 3;
-      for (const ImageLayer* l : layers) {
-        const float* v = l->at(i);
-        for (size_t j = 0; j < l->channels.size(); ++j) out_px[k++] = v[j];
-      }
+      for (int k = 0; k < 3; ++k) linear_data[3 * i + size_t(k)] = c[k] > 0 && std::isfinite(c[k]) ? c[k] : 0.0f;
     }
     data = linear_data.data();
     data_type = OIIO::TypeDesc::FLOAT;
   } else {
-    // Display formats: exposure and the view transform are applied here rather than by OIIO's colour
-    // management, so the output does not depend on how OIIO/OpenColorIO were configured.
     spec = OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
-    std::vector<float> display;
-    apply_view_transform(options.view, options.exposure, image, display);
-    display_data.resize(display.size());
-    for (size_t i = 0; i < display.size(); ++i)
-      display_data[i] = static_cast<unsigned char>(std::lround(display[i] * 255));
+    display_data = display_bytes(image, options);
     data = display_data.data();
     data_type = OIIO::TypeDesc::UINT8;
   }
@@ -131,7 +74,7 @@ void write_image(const Image& image, const std::string& path, const WriteOptions
     if (const auto* v = std::get_if<std::string>(&a.value)) {
       spec.attribute(a.name, *v);
     } else if (!linear) {
-      continue;  // PNG and JPEG hold text only
+      continue;  // JPEG, TIFF and the like get text only, as PNG
     } else if (const auto* i = std::get_if<int>(&a.value)) {
       spec.attribute(a.name, *i);
     } else if (const auto* f = std::get_if<float>(&a.value)) {

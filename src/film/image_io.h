@@ -1,5 +1,6 @@
-// Image files through OpenImageIO. Implemented in the module torte_io, which executables load on the first
-// image read or write (film/image_module.h): linking OIIO cost every process start ~0.2-0.5 s.
+// Image files: EXR and PNG output through OpenEXR and libpng, everything else through OpenImageIO. Implemented
+// in two modules, which executables load on first use (film/image_module.h): linking OIIO cost every process
+// start ~0.2-0.5 s.
 #pragma once
 #include <string>
 
@@ -23,8 +24,8 @@ Image read_image(const std::string& path);
 // sRGB transfer function (IEC 61966-2-1) of one linear value clamped to [0,1].
 float linear_to_srgb(float v);
 float srgb_to_linear(float v);
-/// Executables only (image_io_loader.cc): starts loading the image module on a background thread and returns at
-/// once, so that a later read or write need not wait for it. Harmless when it is loaded or loading already.
+/// Executables only (image_io_loader.cc): starts loading the writing module on a background thread and returns
+/// at once, so that a later write need not wait for it. Harmless when it is loaded or loading already.
 void preload_image_io();
 
 }  // namespace torte

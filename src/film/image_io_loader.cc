@@ -1,10 +1,13 @@
 // The executables' side of image I/O (image_module.h): each function of image_io.h and image_texture_oiio.h
-// loads the OpenImageIO module on first use and forwards to it, so a run that reads and writes no image never
-// pays for OpenImageIO's shared libraries. Errors of the readers and writers pass through unchanged.
+// loads its module on first use and forwards to it: EXR and PNG output and the view transforms to the small
+// writing module, everything else to the OpenImageIO module, so a run that reads no image never pays for
+// OpenImageIO's shared libraries. Errors of the readers and writers pass through unchanged.
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <climits>
+#include <filesystem>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -19,42 +22,63 @@ namespace {
 
 // Next to the executable first (build/torte, an installed copy), then where the build put it (tests and tools
 // live in subdirectories of the build).
-std::string module_next_to_executable() {
+std::string next_to_executable(const char* name) {
   char buf[PATH_MAX];
   const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
   if (n <= 0) return {};
   std::string dir(buf, size_t(n));
   dir.resize(dir.rfind('/') + 1);
-  return dir + TORTE_IMAGE_MODULE_NAME;
+  return dir + name;
 }
 
-const ImageModuleApi* load_module() {
+// The table that the module's entry point `entry_name` returns, checked against this executable's headers.
+template <class Api>
+const Api* load_module(const char* name, const char* build_path, const char* entry_name) {
   std::string tried;
   void* handle = nullptr;
-  for (const std::string& path : {module_next_to_executable(), std::string(TORTE_IMAGE_MODULE_PATH)}) {
+  for (const std::string& path : {next_to_executable(name), std::string(build_path)}) {
     if (path.empty() || ::access(path.c_str(), R_OK) != 0) continue;
-    // RTLD_LAZY: binding all of OpenImageIO's dependencies' functions up front doubled the load time; the module
-    // is linked with --no-undefined, so nothing of torte's can be missing.
+    // RTLD_LAZY: binding all of OpenImageIO's dependencies' functions up front doubled the load time; the modules
+    // are linked with --no-undefined, so nothing of torte's can be missing.
     handle = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
     if (handle) break;
     tried = path + ": " + ::dlerror();
   }
-  if (!handle)
-    throw Error("cannot load the image I/O module " + (tried.empty() ? std::string(TORTE_IMAGE_MODULE_PATH) : tried));
-  const auto entry = reinterpret_cast<decltype(&torte_image_module_api)>(::dlsym(handle, "torte_image_module_api"));
-  const ImageModuleApi* api = entry ? entry() : nullptr;
-  if (!api || api->abi != kImageModuleAbi) throw Error("the image I/O module " + std::string(TORTE_IMAGE_MODULE_PATH) +
-                                                       " does not match this executable (rebuild it)");
+  if (!handle) throw Error("cannot load the image module " + (tried.empty() ? std::string(build_path) : tried));
+  using Entry = const Api* (*)();
+  const auto entry = reinterpret_cast<Entry>(::dlsym(handle, entry_name));
+  const Api* api = entry ? entry() : nullptr;
+  if (!api || api->abi != kImageModuleAbi)
+    throw Error("the image module " + std::string(build_path) + " does not match this executable (rebuild it)");
   // If the executable exported these forwarding functions, the module would have bound to them: endless recursion.
-  if (api->read_image == &read_image) throw Error("the image I/O module resolved to the executable's loader");
+  if (api->linear_to_srgb == &linear_to_srgb) throw Error("the image module resolved to the executable's loader");
   return api;
 }
 
+// A throw leaves a once_flag unset: the next call retries.
 const ImageModuleApi& module() {
   static std::once_flag once;
   static const ImageModuleApi* api = nullptr;
-  std::call_once(once, [] { api = load_module(); });  // a throw leaves the flag unset: the next call retries
+  std::call_once(once, [] {
+    api = load_module<ImageModuleApi>(TORTE_IMAGE_MODULE_NAME, TORTE_IMAGE_MODULE_PATH, "torte_image_module_api");
+  });
   return *api;
+}
+
+const ImageWriteModuleApi& write_module() {
+  static std::once_flag once;
+  static const ImageWriteModuleApi* api = nullptr;
+  std::call_once(once, [] {
+    api = load_module<ImageWriteModuleApi>(TORTE_WRITE_MODULE_NAME, TORTE_WRITE_MODULE_PATH,
+                                           "torte_image_write_module_api");
+  });
+  return *api;
+}
+
+bool written_by_write_module(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".exr" || ext == ".png";
 }
 
 }  // namespace
@@ -74,7 +98,7 @@ void preload_image_io() {
   std::call_once(started, [] {
     loader.thread = std::thread([] {
       try {
-        module();
+        write_module();  // what saving a render needs; the OpenImageIO module only if something reads an image
       } catch (...) {
       }
     });
@@ -82,6 +106,7 @@ void preload_image_io() {
 }
 
 void write_image(const Image& image, const std::string& path, const WriteOptions& options) {
+  if (written_by_write_module(path)) return write_module().write_image(image, path, options);
   module().write_image(image, path, options);
 }
 
@@ -94,10 +119,10 @@ std::shared_ptr<const ImageSource> open_image_texture(const std::string& path, c
 void invalidate_image_texture(const std::string& path) { module().invalidate_image_texture(path); }
 
 void apply_view_transform(ViewTransform view, float exposure, const Image& image, std::vector<float>& out) {
-  module().apply_view_transform(view, exposure, image, out);
+  write_module().apply_view_transform(view, exposure, image, out);
 }
 
-float linear_to_srgb(float v) { return module().linear_to_srgb(v); }
-float srgb_to_linear(float v) { return module().srgb_to_linear(v); }
+float linear_to_srgb(float v) { return write_module().linear_to_srgb(v); }
+float srgb_to_linear(float v) { return write_module().srgb_to_linear(v); }
 
 }  // namespace torte

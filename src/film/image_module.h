@@ -1,7 +1,10 @@
-// The table of entry points of the image-I/O module (libtorte_io.so: image_io.cc and the *_oiio.cc and *_ocio.cc
-// files, linked with OpenImageIO and OpenColorIO). Executables do not link either: OIIO's ~250 shared libraries
-// cost ~0.2 s of dynamic linking per process start, so image_io_loader.cc dlopens the module on the first image
-// read or write.
+// The tables of entry points of the two image modules, which image_io_loader.cc dlopens on first use:
+// - libtorte_io.so (image_io.cc and the *_oiio.cc and *_ocio.cc files, linked with OpenImageIO and OpenColorIO):
+//   reading images and textures, and writing the formats of image_io.h other than EXR and PNG. Executables do
+//   not link it: OIIO's ~250 shared libraries cost ~0.2 s of dynamic linking per process start and ~120 MB of
+//   resident memory once loaded.
+// - libtorte_write.so (image_write_*.cc and view_transform_ocio.cc, linked with OpenEXR, libpng and OpenColorIO,
+//   a dozen libraries): writing EXR and PNG, which every render does, and the view transforms.
 #pragma once
 #include <memory>
 #include <string>
@@ -25,10 +28,19 @@ struct ImageModuleApi {
   void (*apply_view_transform)(ViewTransform, float, const Image&, std::vector<float>&);
 };
 
-// Bumped whenever ImageModuleApi or a signature in it changes.
-inline constexpr int kImageModuleAbi = 3;
+// Bumped whenever a table in this file or a signature in it changes.
+inline constexpr int kImageModuleAbi = 4;
+
+struct ImageWriteModuleApi {
+  int abi;  // kImageModuleAbi of the module's build
+  void (*write_image)(const Image&, const std::string&, const WriteOptions&);  // .exr and .png only
+  float (*linear_to_srgb)(float);
+  float (*srgb_to_linear)(float);
+  void (*apply_view_transform)(ViewTransform, float, const Image&, std::vector<float>&);
+};
 
 }  // namespace torte
 
-/// The module's one exported C entry point: its table of functions.
+/// Each module's one exported C entry point: its table of functions.
 extern "C" const torte::ImageModuleApi* torte_image_module_api();
+extern "C" const torte::ImageWriteModuleApi* torte_image_write_module_api();

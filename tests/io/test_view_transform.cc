@@ -148,3 +148,44 @@ torte.save(img, opt.output, {tonemap = opt.tonemap})
     CHECK_THAT(line, Catch::Contains("s.lua"));
   }
 }
+
+TEST_CASE("output: EXR and PNG are written without OpenImageIO and keep the render's metadata", "[view][cli]") {
+  TempDir dir("view", "writers");
+  // The script looks at its own process after saving: the writing module only, not OpenImageIO's ~250 libraries
+  // (~120 MB resident, image_module.h).
+  const std::string script = dir.write("s.lua", R"(
+local opt = torte.options{output = "x.exr"}
+local scene = torte.scene()
+scene:add(torte.shape.sphere{radius = 1, material = torte.material.matte{color = {0.8, 0.3, 0.2}}})
+scene:add(torte.light.point{position = {2, 3, -3}, intensity = 200})
+local camera = torte.camera.perspective{eye = {0, 0, -4}, look_at = {0, 0, 0}, fov = 40}
+local img = torte.render{scene = scene, camera = camera, width = 16, height = 12, spp = 2, aovs = {"albedo", "depth"}}
+torte.save(img, opt.output)
+local maps = io.open("/proc/self/maps"):read("a")
+print("oiio " .. tostring(maps:find("libOpenImageIO", 1, true) ~= nil))
+print("writer " .. tostring(maps:find("libtorte_write", 1, true) ~= nil))
+)");
+  const std::string exr = dir / "out.exr";
+  const Result r = run_torte(dir, {"--quiet", script, "output=" + exr}, 60);
+  check_no_crash(r);
+  INFO("stderr: " << r.err);
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("oiio false"));
+  CHECK_THAT(r.out, Catch::Contains("writer true"));
+  // Read back through OpenImageIO: the layers as channels, the settings as typed attributes, text in the PNG.
+  const Image back = read_image(exr);
+  CHECK(back.width == 16);
+  REQUIRE(back.layers.size() == 2);
+  CHECK(back.layers[0].name == "albedo");
+  CHECK(back.layers[0].channels == std::vector<std::string>{"R", "G", "B"});
+  CHECK(back.layers[1].name == "depth");
+  const std::string header = read_file(exr).substr(0, 4096);
+  CHECK(header.find(std::string("torte:spp") + '\0' + "int") != std::string::npos);
+  CHECK(header.find(std::string("torte:render_seconds") + '\0' + "float") != std::string::npos);
+  CHECK(header.find(std::string("worldToCamera") + '\0' + "m44f") != std::string::npos);
+  CHECK(header.find(std::string("compression") + '\0' + "compression") != std::string::npos);
+  const std::string png = read_file(dir / "out.png");
+  CHECK(png.find("sRGB") != std::string::npos);
+  CHECK(png.find(std::string("tEXtSoftware") + '\0' + "torte ") != std::string::npos);
+  CHECK(png.find(std::string("tEXttorte:integrator") + '\0' + "path") != std::string::npos);
+}
