@@ -55,7 +55,9 @@ TEST_CASE("Small blocks keep their type's alignment and grow like any vector", "
 }
 
 TEST_CASE("fault_in makes a fresh block resident, zeros intact; make_huge_page_vector gives n zeros", "[huge_pages]") {
-  // 40 MiB and a bit (not a whole number of huge pages): above fault_in's 32 MiB threshold.
+  // 40 MiB and a bit (not a whole number of huge pages): above fault_in's 32 MiB threshold. A fresh mapping, not
+  // a block kept from an earlier test.
+  huge_pages::release_cached();
   const size_t bytes = (size_t(40) << 20) + 12345;
   char* const p = static_cast<char*>(huge_pages::allocate(bytes, 64));
   const size_t page = size_t(sysconf(_SC_PAGESIZE));
@@ -76,4 +78,70 @@ TEST_CASE("fault_in makes a fresh block resident, zeros intact; make_huge_page_v
     CHECK(v.size() == n);
     CHECK(std::all_of(v.begin(), v.end(), [](float x) { return x == 0.0f; }));
   }
+}
+
+TEST_CASE("Freed large blocks are handed out again until release_cached", "[huge_pages]") {
+  huge_pages::release_cached();
+  REQUIRE(huge_pages::cached_bytes() == 0);
+  const size_t mib = size_t(1) << 20;
+  // A freed 16 MiB block serves a 4 MiB request from its head and a 12 MiB one from its tail.
+  char* const big = static_cast<char*>(huge_pages::allocate(16 * mib, 64));
+  std::fill(big, big + 16 * mib, char(7));
+  huge_pages::deallocate(big, 16 * mib, 64);
+  CHECK(huge_pages::cached_bytes() == 16 * mib);
+  char* const head = static_cast<char*>(huge_pages::allocate(4 * mib, 64));
+  CHECK(head == big);
+  CHECK(huge_pages::cached_bytes() == 12 * mib);
+  char* const tail = static_cast<char*>(huge_pages::allocate(12 * mib - 100, 64));  // rounds up to 12 MiB
+  CHECK(tail == big + 4 * mib);
+  CHECK(huge_pages::cached_bytes() == 0);
+  CHECK(reinterpret_cast<uintptr_t>(tail) % huge_pages::kHugePage == 0);
+  // The pages came back as they were (not zeroed, not unmapped): no first touch is paid again.
+  CHECK(std::all_of(head, head + 4 * mib, [](char c) { return c == 7; }));
+  huge_pages::deallocate(head, 4 * mib, 64);
+  huge_pages::deallocate(tail, 12 * mib - 100, 64);
+  CHECK(huge_pages::cached_bytes() == 16 * mib);
+  huge_pages::release_cached();
+  CHECK(huge_pages::cached_bytes() == 0);
+
+  // Only resident pages are kept: a block is cut after its last touched huge page, an untouched one not kept.
+  char* const part = static_cast<char*>(huge_pages::allocate(16 * mib, 64));
+  std::fill(part, part + 3 * mib, char(1));
+  huge_pages::deallocate(part, 16 * mib, 64);
+  CHECK(huge_pages::cached_bytes() == 4 * mib);
+  char* const bigger = static_cast<char*>(huge_pages::allocate(32 * mib, 64));  // a fresh range ...
+  CHECK(huge_pages::cached_bytes() == 0);  // ... into which the kept block was moved
+  CHECK(std::all_of(bigger, bigger + 3 * mib, [](char c) { return c == 1; }));
+  huge_pages::deallocate(bigger, 32 * mib, 64);
+  huge_pages::release_cached();
+  void* const untouched = huge_pages::allocate(8 * mib, 64);
+  huge_pages::deallocate(untouched, 8 * mib, 64);
+  CHECK(huge_pages::cached_bytes() == 0);
+}
+
+TEST_CASE("A request larger than every kept block grows one, aligned, its pages kept", "[huge_pages]") {
+  huge_pages::release_cached();
+  const size_t mib = size_t(1) << 20;
+  // Something mapped right after the freed block would stop it growing in place; either way (grown in place or
+  // moved) the result starts on a huge page and holds the old pages first.
+  char* const a = static_cast<char*>(huge_pages::allocate(6 * mib, 64));
+  std::fill(a, a + 6 * mib, char(3));
+  huge_pages::deallocate(a, 6 * mib, 64);
+  char* const grown = static_cast<char*>(huge_pages::allocate(20 * mib, 64));
+  CHECK(huge_pages::cached_bytes() == 0);
+  CHECK(reinterpret_cast<uintptr_t>(grown) % huge_pages::kHugePage == 0);
+  CHECK(std::all_of(grown, grown + 6 * mib, [](char c) { return c == 3; }));
+  CHECK(std::all_of(grown + 6 * mib, grown + 20 * mib, [](char c) { return c == 0; }));  // fresh pages
+  std::fill(grown, grown + 20 * mib, char(1));  // all of it writable
+  huge_pages::deallocate(grown, 20 * mib, 64);
+  huge_pages::release_cached();
+
+  // make_huge_page_vector on a reused, dirty block still gives zeros.
+  {
+    HugePageVector<float> dirty((size_t(40) << 20) / sizeof(float), 5.0f);
+  }
+  CHECK(huge_pages::cached_bytes() >= (size_t(40) << 20));
+  const HugePageVector<float> v = make_huge_page_vector<float>((size_t(36) << 20) / sizeof(float));
+  CHECK(std::all_of(v.begin(), v.end(), [](float x) { return x == 0.0f; }));
+  huge_pages::release_cached();
 }

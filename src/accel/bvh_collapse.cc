@@ -96,7 +96,7 @@ template <int N>
 class OptimalCollapser {
  public:
   OptimalCollapser(const BinaryBvh& binary, const BvhBuildOptions& options, WideBvh<N>& wide)
-      : bin_(binary.nodes), o_(options), wide_(wide), dp_(binary.nodes.size()) {
+      : bin_(binary.nodes), o_(options), wide_(wide), dp_(make_huge_page_vector<Choice>(binary.nodes.size())) {
     // Every area gets a tiny floor so zero-area subtrees still prefer fewer nodes (ties broken toward memory);
     // with a zero-area root every node weighs the same, as in sah_cost.
     const float root_area = bin_[0].bounds.surface_area();
@@ -207,7 +207,7 @@ class OptimalCollapser {
   const HugePageVector<BinaryBvhNode>& bin_;
   const BvhBuildOptions& o_;
   WideBvh<N>& wide_;
-  std::vector<Choice> dp_;
+  HugePageVector<Choice> dp_;  // from huge_pages like the trees: it takes the pages the references left
   float area_floor_;
 };
 

@@ -7,7 +7,8 @@
 // its BVH memory the same way. On a kernel whose THP mode is "madvise" (Debian's default) nothing else gets huge
 // pages; with "never" the advice is ignored and the arrays are ordinary pages. Measured (embree-compare, diffuse
 // rays, alternating runs, 2026-11-22): bunny-1m 0.95 -> 1.00 of Embree, bunny-4m 0.83-0.90 -> 0.92-1.00.
-// TORTE_NO_HUGE_PAGES=1 in the environment leaves out the advice, for A/B runs.
+// TORTE_NO_HUGE_PAGES=1 in the environment leaves out the advice, TORTE_NO_BLOCK_CACHE=1 the reuse of freed
+// blocks (deallocate), for A/B runs.
 #pragma once
 #include <cstddef>
 #include <new>
@@ -20,8 +21,13 @@ constexpr size_t kHugePage = size_t(2) << 20;
 // `bytes` (> 0) of memory aligned to kHugePage when bytes >= kHugePage, else to `align`.
 // Throws std::bad_alloc when the system has no memory left.
 void* allocate(size_t bytes, size_t align);
-// Frees memory from allocate(bytes, align) with the same bytes and align.
+// Frees memory from allocate(bytes, align) with the same bytes and align. A block of kHugePage or more is kept
+// for reuse by later allocations (at most a quarter of the machine's memory) until release_cached().
 void deallocate(void* p, size_t bytes, size_t align) noexcept;
+/// Returns every kept block to the system. Called when a scene's build is done: what it freed is not needed again.
+void release_cached() noexcept;
+/// Bytes of freed blocks kept for reuse (for tests and diagnostics).
+size_t cached_bytes() noexcept;
 // Bytes of `p`'s mapping backed by huge pages (from /proc/self/smaps), for tests and diagnostics; 0 when unknown.
 size_t backed_bytes(const void* p);
 // Faults the pages of a fresh block from allocate(bytes, ...) in from all threads (TBB), writing zeros, which a

@@ -29,6 +29,7 @@ void Scene::finalize(ProgressCounter* progress) {
     progress->total = GeometrySet::kProgressPerTriangle * triangles;
   }
   accel_.build(meshes, quadrics, grids, prototypes, instances, progress, accel_options);
+  huge_pages::release_cached();  // the build's freed scratch, kept for its own reuse (core/huge_pages.h)
   bounds_ = accel_.bounds();
 
   const Bounds3f b = bounds_;
