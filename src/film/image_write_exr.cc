@@ -27,8 +27,10 @@ namespace torte {
 
 namespace {
 
-// Compression runs on OpenEXR's own thread pool, one thread per core (as OpenImageIO set it up).
-int exr_threads() {
+// Large images are compressed on OpenEXR's own thread pool, one thread per core (as OpenImageIO set it up);
+// small ones (previews, tests) on the calling thread, so most processes never start the pool.
+int exr_threads(size_t pixels) {
+  if (pixels < (size_t(1) << 20)) return 0;
   static std::once_flag once;
   static int threads = 1;
   std::call_once(once, [] {
@@ -83,7 +85,7 @@ void write_exr(const Image& image, const std::string& path) {
   try {
     // An attribute of a standard name and another type throws too.
     for (const ImageAttribute& a : image.attributes) add_attribute(header, a);
-    Imf::OutputFile file(path.c_str(), header, exr_threads());
+    Imf::OutputFile file(path.c_str(), header, exr_threads(image.pixels.size()));
     file.setFrameBuffer(frame);
     file.writePixels(h);
   } catch (const std::exception& e) {
