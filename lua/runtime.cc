@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <algorithm>
-#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <optional>
@@ -12,6 +11,7 @@
 
 #include "core/interrupt.h"
 #include "core/memory_budget.h"
+#include "core/text.h"
 #include "distributed/session.h"
 #include "progress.h"
 #include "sandbox.h"
@@ -160,8 +160,7 @@ struct Run {
 // The protected part of run_script: the libraries, the torte module, the prelude and the script itself.
 // A glTF model given where a script goes.
 bool is_model_file(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   return ext == ".gltf" || ext == ".glb";
 }
 

@@ -1,7 +1,9 @@
 #include "core/text.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <vector>
 
 namespace torte {
@@ -109,6 +111,12 @@ std::string format_number(float v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", double(v));
   return buf;
+}
+
+std::string lower_extension(std::string_view path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
 }
 
 }  // namespace torte

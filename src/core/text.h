@@ -1,5 +1,5 @@
 // Text from files and libraries made safe for one-line error messages: control bytes escaped, lines joined,
-// length capped.
+// length capped; and the extension of a file name.
 #pragma once
 #include <cstddef>
 #include <string>
@@ -23,5 +23,9 @@ std::string one_line_message(std::string_view text, std::string_view fallback = 
 
 /// A float for a message: "%g", and "nan" for every NaN (printf writes "-nan" for some).
 std::string format_number(float v);
+
+/// The file name's extension in lower case, with its dot (".exr"); empty when it has none (std::filesystem's
+/// rule: "dir/.hidden" has none). What picks a file's format by its name.
+std::string lower_extension(std::string_view path);
 
 }  // namespace torte

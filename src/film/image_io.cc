@@ -15,8 +15,6 @@
 #include "core/text.h"
 #include "film/image_header_check.h"
 #include "film/image_write_common.h"
-#include "film/image_write_exr.h"
-#include "film/image_write_png.h"
 
 namespace torte {
 
@@ -34,11 +32,10 @@ std::string one_line(const std::string& s) { return one_line_message(s, "no mess
 void write_image(const Image& image, const std::string& path, const WriteOptions& options) {
   check_image_to_write(image, path);
   const std::string ext = lower_extension(path);
-  if (ext == ".exr") return write_exr(image, path);
-  if (ext == ".png") return write_png(image, path, options);
+  // EXR and PNG go to the writing module (image_io_loader.cc); every other format through OpenImageIO.
+  if (ext == ".exr" || ext == ".png") write_error(path, "internal: EXR and PNG are the writing module's");
   if (ext.empty()) write_error(path, "no file extension to choose the format from");
-  // Every other format through OpenImageIO. Ask it for a writer before touching the file system, so an unknown
-  // extension creates no directories.
+  // Ask OpenImageIO for a writer before touching the file system, so an unknown extension creates no directories.
   auto out = OIIO::ImageOutput::create(path);
   if (!out) write_error(path, one_line(OIIO::geterror()));
   create_parent_directories(path);

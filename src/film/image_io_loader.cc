@@ -5,14 +5,13 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
-#include <cctype>
 #include <climits>
-#include <filesystem>
 #include <mutex>
 #include <string>
 #include <thread>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "film/image_module.h"
 #include "texture/image_texture_oiio.h"
 
@@ -51,7 +50,7 @@ const Api* load_module(const char* name, const char* build_path, const char* ent
   if (!api || api->abi != kImageModuleAbi)
     throw Error("the image module " + std::string(build_path) + " does not match this executable (rebuild it)");
   // If the executable exported these forwarding functions, the module would have bound to them: endless recursion.
-  if (api->linear_to_srgb == &linear_to_srgb) throw Error("the image module resolved to the executable's loader");
+  if (api->write_image == &write_image) throw Error("the image module resolved to the executable's loader");
   return api;
 }
 
@@ -76,8 +75,7 @@ const ImageWriteModuleApi& write_module() {
 }
 
 bool written_by_write_module(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   return ext == ".exr" || ext == ".png";
 }
 

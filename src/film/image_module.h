@@ -22,14 +22,11 @@ struct ImageModuleApi {
   void (*write_image)(const Image&, const std::string&, const WriteOptions&);
   Image (*read_image)(const std::string&);
   std::shared_ptr<const ImageSource> (*open_image_texture)(const std::string&, const ImageTextureOptions&);
-  float (*linear_to_srgb)(float);
-  float (*srgb_to_linear)(float);
   void (*invalidate_image_texture)(const std::string&);
-  void (*apply_view_transform)(ViewTransform, float, const Image&, std::vector<float>&);
 };
 
 // Bumped whenever a table in this file or a signature in it changes.
-inline constexpr int kImageModuleAbi = 4;
+inline constexpr int kImageModuleAbi = 5;
 
 struct ImageWriteModuleApi {
   int abi;  // kImageModuleAbi of the module's build

@@ -7,8 +7,7 @@
 #include "texture/image_texture_oiio.h"
 
 extern "C" __attribute__((visibility("default"))) const torte::ImageModuleApi* torte_image_module_api() {
-  static const torte::ImageModuleApi api{torte::kImageModuleAbi,  &torte::write_image,     &torte::read_image,
-                                         &torte::open_image_texture, &torte::linear_to_srgb, &torte::srgb_to_linear,
-                                         &torte::invalidate_image_texture, &torte::apply_view_transform};
+  static const torte::ImageModuleApi api{torte::kImageModuleAbi, &torte::write_image, &torte::read_image,
+                                         &torte::open_image_texture, &torte::invalidate_image_texture};
   return &api;
 }

@@ -1,6 +1,5 @@
 #include "film/image_write_common.h"
 
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <system_error>
@@ -26,12 +25,6 @@ float srgb_to_linear(float v) {
 
 void write_error(const std::string& path, const std::string& reason) {
   throw Error("cannot write image '" + path + "': " + reason);
-}
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
 }
 
 void check_image_to_write(const Image& image, const std::string& path) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/text.h"  // lower_extension
 #include "film/image.h"
 #include "film/image_io.h"
 
@@ -13,8 +14,6 @@ namespace torte {
 
 /// Throws torte::Error "cannot write image 'path': reason".
 [[noreturn]] void write_error(const std::string& path, const std::string& reason);
-/// The path's extension, lower case, with its dot (".exr"); empty when it has none.
-std::string lower_extension(const std::string& path);
 /// Throws (write_error) when the image has no pixels or its pixel array does not match its size.
 void check_image_to_write(const Image& image, const std::string& path);
 /// Throws (write_error) when a layer has no channels or not one value per channel and pixel (formats that keep
