@@ -77,7 +77,10 @@ void add_aovs(RenderedImage& img, const Scene& scene, const Camera& camera, cons
   if (samples)
     img.image.layers.push_back(samples_layer(s.width, s.height, img.pixel_spp, img.stats.spp_reached));
   if (aovs.empty()) return;
-  if (request.denoise) img.image = denoise(img.image);
+  if (request.denoise) {
+    if (!img.variance.empty()) img.image.layers.push_back({"variance", {"Y"}, img.variance});
+    img.image = denoise(img.image);
+  }
 }
 
 namespace {

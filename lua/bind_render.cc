@@ -292,7 +292,8 @@ std::string checkpoint_key(const RenderSettings& s, const std::string& integrato
          ";tile_size=" + std::to_string(s.tile_size) + ";filter=" + filter + ";vpl_sets=" + std::to_string(s.vpl_sets) +
          ";light_paths=" + std::to_string(s.light_paths) + ";g_limit=" + std::to_string(s.g_limit) +
          ";vpl_roulette=" + std::to_string(s.vpl_roulette) + ";radius=" + std::to_string(s.merge_radius) +
-         ";alpha=" + std::to_string(s.merge_alpha) + ";scene=" + hash;
+         ";alpha=" + std::to_string(s.merge_alpha) + ";pixel_variance=" + std::to_string(s.pixel_variance) +
+         ";scene=" + hash;
 }
 
 int l_render(lua_State* L) {
@@ -388,6 +389,7 @@ int l_render(lua_State* L) {
   if (ctx.noise_threshold_override) s.noise_threshold = *ctx.noise_threshold_override;
   if (ctx.noise_threshold_override || ctx.spp_override > 0 || ctx.quick)  // the rules again, for the overrides
     if (const auto problem = find_settings_problem(s)) throw Error("torte.render: " + problem->message());
+  s.pixel_variance = aov_request.denoise;  // the denoiser's noise level
   if (ctx.interrupted || interrupt_requested()) throw Interrupted("interrupted: torte.render was not started");
   // The film is checked before the scene is built, so an over-large image fails at once.
   reserve_memory(render_memory_bytes(s), "torte.render: the " + std::to_string(s.width) + "x" +
@@ -427,6 +429,7 @@ int l_render(lua_State* L) {
   img->image.attributes = render_attributes(s, integrator, *camera, out.stats);
   img->stats = out.stats;
   img->pixel_spp = std::move(out.pixel_spp);
+  img->variance = std::move(out.variance);
   if (!out.stats.interrupted && !interrupt_requested()) {  // Ctrl-C: keep what the render made, nothing more
     const auto t_aov = std::chrono::steady_clock::now();
     add_aovs(*img, flat, Camera(*camera, s.width, s.height), s, aov_request, ctx.cancel);

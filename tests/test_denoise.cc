@@ -201,3 +201,49 @@ TEST_CASE("denoise: bitwise the same on one thread and on several", "[denoise]")
   REQUIRE(one.pixels.size() == many.pixels.size());
   CHECK(std::memcmp(one.pixels.data(), many.pixels.data(), one.pixels.size() * sizeof(Rgb)) == 0);
 }
+
+TEST_CASE("denoise: one-pixel glints whose samples agree are kept when the render's variance says so", "[denoise]") {
+  // Single pixels 8 times brighter than the surface, every 8 pixels (bump-mapped metal reflecting a light): their
+  // 16 samples all carry the glint (q = 1: no noise), the surface's are heavy-tailed (q = 0.5). Their spatial
+  // neighbours cannot tell a glint from a firefly; the per-pixel variance of the mean (the "variance" layer
+  // torte.render writes with denoise = true) can.
+  std::vector<float> light(size_t(kW) * kH, 0.25f);
+  const auto glint = [](int x, int y) { return x % 8 == 4 && y % 8 == 4; };
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      if (glint(x, y)) light[size_t(y) * kW + size_t(x)] = 2.0f;
+  Synthetic s = make_mc(light, 0.5f, 13);
+  Pcg32 rng(14);
+  ImageLayer variance{"variance", {"Y"}, {}};
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const size_t i = size_t(y) * kW + size_t(x);
+      if (glint(x, y)) {
+        s.noisy.pixels[i] = s.truth[i];
+        variance.values.push_back(0);
+      } else {
+        // The mean of 16 samples of 0 or 2 m with probability 1/2 has variance m^2 / 16 (m: the mean).
+        const float m = s.truth[i].g;
+        variance.values.push_back(m * m / 16);
+      }
+    }
+  const auto glint_sum = [&](const Image& img) {
+    double sum = 0, truth = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x)
+        if (glint(x, y)) sum += img.pixels[size_t(y) * kW + size_t(x)].g, truth += s.truth[size_t(y) * kW + size_t(x)].g;
+    return sum / truth;
+  };
+  const Image without = denoise(s.noisy);
+  s.noisy.layers.push_back(variance);
+  const Image with = denoise(s.noisy);
+  INFO("glints keep " << glint_sum(with) << " of their light with the variance layer, " << glint_sum(without)
+                      << " without");
+  CHECK(glint_sum(with) == Approx(1).epsilon(0.1));
+  CHECK(glint_sum(without) < 0.8);  // what the layer changes: the median guide took them for fireflies
+  const double before = rmse(s.noisy.pixels, s.truth), after = rmse(with.pixels, s.truth);
+  INFO("rmse " << before << " -> " << after);
+  CHECK(after < before / 2);  // the surface around them is still denoised
+  s.noisy.layers.back().values.pop_back();
+  CHECK_THROWS_AS(denoise(s.noisy), Error);  // a variance layer of the wrong size
+}

@@ -38,14 +38,23 @@ struct In {
   }
 };
 
-// The tile's rows of the film's sums, appended to or read from a message.
+// The tile's rows of the film's sums, and of its luminance moments when it keeps them (every rank's film does or
+// none does: the settings are the same), appended to or read from a message.
 void put_tile(Out& o, const Film& film, const TileRect& r) {
-  for (int y = r.y0; y < r.y1; ++y)
-    o.put(&film.sums()[size_t(y) * size_t(film.width()) + size_t(r.x0)], sizeof(PixelSum) * size_t(r.x1 - r.x0));
+  const size_t n = size_t(r.x1 - r.x0);
+  for (int y = r.y0; y < r.y1; ++y) {
+    const size_t at = size_t(y) * size_t(film.width()) + size_t(r.x0);
+    o.put(&film.sums()[at], sizeof(PixelSum) * n);
+    if (!film.moments().empty()) o.put(&film.moments()[at], sizeof(float) * n);
+  }
 }
 void get_tile(In& in, Film& film, const TileRect& r) {
-  for (int y = r.y0; y < r.y1; ++y)
-    in.get(&film.sums()[size_t(y) * size_t(film.width()) + size_t(r.x0)], sizeof(PixelSum) * size_t(r.x1 - r.x0));
+  const size_t n = size_t(r.x1 - r.x0);
+  for (int y = r.y0; y < r.y1; ++y) {
+    const size_t at = size_t(y) * size_t(film.width()) + size_t(r.x0);
+    in.get(&film.sums()[at], sizeof(PixelSum) * n);
+    if (!film.moments().empty()) in.get(&film.moments()[at], sizeof(float) * n);
+  }
 }
 
 std::vector<char> receive(int source, int tag, MPI_Status* status_out = nullptr) {

@@ -13,7 +13,8 @@ namespace torte {
 
 namespace {
 
-constexpr char kMagic[8] = {'T', 'O', 'R', 'T', 'E', 'C', 'K', '1'};
+// The last byte is the format's version (2: the film's luminance moments follow its splat sums).
+constexpr char kMagic[8] = {'T', 'O', 'R', 'T', 'E', 'C', 'K', '2'};
 
 struct FileCloser {
   void operator()(std::FILE* f) const { std::fclose(f); }
@@ -105,6 +106,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     w.bytes(c.film.sums().data(), c.film.sums().size_bytes());
     w.value(uint64_t(c.film.splat_sums().size()));
     w.bytes(c.film.splat_sums().data(), c.film.splat_sums().size_bytes());
+    w.value(uint64_t(c.film.moments().size()));
+    w.bytes(c.film.moments().data(), c.film.moments().size_bytes());
     w.value(uint64_t(c.pending.size()));
     for (const auto& [tile, buffer] : c.pending) {
       w.value(tile);
@@ -123,8 +126,11 @@ Checkpoint read_checkpoint(const std::string& path, const std::string& expected_
   if (!f) throw Error("--resume " + path + ": cannot open (" + std::strerror(errno) + ")");
   Reader r(f.get(), path);
   char magic[sizeof kMagic];
-  if (std::fread(magic, 1, sizeof magic, f.get()) != sizeof magic || std::memcmp(magic, kMagic, sizeof magic) != 0)
+  if (std::fread(magic, 1, sizeof magic, f.get()) != sizeof magic || std::memcmp(magic, kMagic, sizeof magic - 1) != 0)
     throw Error("--resume " + path + ": not a torte checkpoint");
+  if (magic[sizeof magic - 1] != kMagic[sizeof kMagic - 1])
+    throw Error("--resume " + path + ": a checkpoint of another torte version (format " +
+                std::string(1, magic[sizeof magic - 1]) + ", this one reads " + kMagic[sizeof kMagic - 1] + ")");
   Checkpoint c;
   c.key.resize(r.count(1));
   r.bytes(c.key.data(), c.key.size());
@@ -141,6 +147,10 @@ Checkpoint read_checkpoint(const std::string& path, const std::string& expected_
   if (!splats.empty() && splats.size() != c.film.pixel_count()) throw Error("checkpoint " + path + ": corrupt");
   r.bytes(splats.data(), splats.size() * sizeof(Rgb));
   c.film.set_splat_sums(std::move(splats));
+  std::vector<float> moments(r.count(sizeof(float)));
+  if (!moments.empty() && moments.size() != c.film.pixel_count()) throw Error("checkpoint " + path + ": corrupt");
+  r.bytes(moments.data(), moments.size() * sizeof(float));
+  c.film.set_moments(std::move(moments));
   c.pending.resize(r.count(4));
   for (auto& [tile, buffer] : c.pending) {
     tile = r.value<uint32_t>();

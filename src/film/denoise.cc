@@ -148,8 +148,12 @@ std::vector<float> estimate_variance(const Guide& g, const std::vector<Rgb>& lig
 // The luminance the edge-stopping weights compare: the median of the pixel and its feature-matched 4-neighbours.
 // A firefly (one rare bright sample) is then compared as what its neighbours are, so its energy is spread over
 // them instead of kept in place; a highlight's corner, or a line one pixel wide, has two of its four neighbours
-// at its level and keeps its value (a 3x3 median would round a small highlight's corners off).
-std::vector<float> median_guide(const Guide& g, const std::vector<Rgb>& light) {
+// at its level and keeps its value (a 3x3 median would round a small highlight's corners off). A pixel whose
+// own luminance lies more than kKeepSigmas standard deviations (`var`, per pixel; none when empty) from that
+// median keeps it: its samples agree on a value its neighbours do not have, a glint of bump-mapped metal one
+// pixel wide, where a firefly's few bright samples leave its variance as large as its difference.
+constexpr float kKeepSigmas = 2;
+std::vector<float> median_guide(const Guide& g, const std::vector<Rgb>& light, const std::vector<float>& var) {
   const int w = g.w, h = g.h;
   std::vector<float> out(light.size());
   parallel_for(0, h, [&](int y) {
@@ -164,7 +168,8 @@ std::vector<float> median_guide(const Guide& g, const std::vector<Rgb>& light) {
         if (feature_weight(g, i, j, 1) > 1e-3f) v[n++] = luminance(light[j]);
       }
       std::nth_element(v, v + n / 2, v + n);
-      out[i] = v[n / 2];
+      const float d = luminance(light[i]) - v[n / 2];
+      out[i] = !var.empty() && d * d > kKeepSigmas * kKeepSigmas * var[i] ? luminance(light[i]) : v[n / 2];
     }
   });
   return out;
@@ -191,12 +196,27 @@ Image denoise(const Image& image, const DenoiseOptions& options) {
     light[i] = Rgb(c.r / f.r, c.g / f.g, c.b / f.b);
   }
   std::vector<float> var = estimate_variance(g, light), next_var(count);
+  // The render's own variance of each pixel's mean (the "variance" layer), in the units of `light`: it tells a
+  // glint whose samples agree from a firefly for the first pass's median guide (see median_guide). The filter's
+  // tolerance keeps the estimate above, from the neighbours: 16 samples' own variance is too noisy for that.
+  std::vector<float> sample_var;
+  if (const ImageLayer* v = image.layer("variance")) {
+    if (v->channels.size() != 1 || v->values.size() != count)
+      throw Error("torte.denoise: the 'variance' layer does not match the image");
+    sample_var.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+      const float lc = image.pixels[i].is_finite() ? luminance(image.pixels[i]) : 0.0f, ll = luminance(light[i]);
+      const float k = lc > 1e-6f ? ll / lc : 1 / std::max(kMinAlbedo, luminance(demodulate_factor(g.albedo[i])));
+      sample_var[i] = v->values[i] * k * k;
+    }
+  }
 
   constexpr float kKernel[5] = {1 / 16.0f, 1 / 4.0f, 3 / 8.0f, 1 / 4.0f, 1 / 16.0f};
   const float sigma_l = 2 * options.strength;
   for (int it = 0; it < options.iterations; ++it) {
     const int step = 1 << it;
-    const std::vector<float> guide = median_guide(g, light);
+    // Later passes judge glints by the variance the filter has carried along.
+    const std::vector<float> guide = median_guide(g, light, it == 0 ? sample_var : var);
     parallel_for(0, h, [&](int y) {
       for (int x = 0; x < w; ++x) {
         const size_t i = size_t(y) * size_t(w) + size_t(x);

@@ -6,7 +6,9 @@
 // untouched; what is smoothed is the lighting, and only between pixels whose normals, depths and albedos agree
 // and whose lighting differs by less than its estimated noise. The noise estimate is robust (a median of
 // residuals), so a highlight or a shadow edge is not mistaken for noise, and the lighting compared is a median
-// over the pixel and its 4-neighbours, so a firefly is spread over its neighbours rather than kept.
+// over the pixel and its 4-neighbours, so a firefly is spread over its neighbours rather than kept. A render's
+// "variance" layer (the variance of each pixel's mean luminance; torte.render writes it with denoise = true)
+// keeps one-pixel glints whose samples agree out of that median.
 #pragma once
 #include "film/image.h"
 
@@ -18,8 +20,9 @@ struct DenoiseOptions {
 };
 
 /// The denoised image: `image`'s pixels filtered as above, its layers kept, plus a layer "noisy" (R, G, B)
-/// holding the input pixels. Pixels an "emission" layer (when present) shows lit directly by emitters or the sky keep their values. Throws torte::Error when a layer it needs ("albedo", "normal", "depth") is missing
-/// or does not match the image's size, or when the options are out of range.
+/// holding the input pixels. Pixels an "emission" layer (when present) shows lit directly by emitters or the sky
+/// keep their values. Throws torte::Error when a layer it needs ("albedo", "normal", "depth") is missing, when
+/// one of those or a "variance" layer does not match the image's size, or when the options are out of range.
 Image denoise(const Image& image, const DenoiseOptions& options = {});
 
 }  // namespace torte

@@ -22,6 +22,10 @@ struct PixelSum {
 };
 static_assert(sizeof(PixelSum) == 16);
 
+/// The variance of a pixel's mean luminance after n samples from its sums (`moment`: the sum of w luminance^2):
+/// the unbiased sample variance of one sample over n; 0 for n < 2 or an empty pixel.
+double mean_luminance_variance(const PixelSum& sum, float moment, uint32_t n);
+
 /// Splats recorded by one work item, in the order it made them; merged into the film later.
 class SplatBuffer {
  public:
@@ -75,6 +79,13 @@ class Film {
   void track_moments() { moments_.assign(sums_.size(), 0.0f); }
   /// The sums of w * luminance^2 (empty unless track_moments was called).
   std::span<const float> moments() const { return moments_; }
+  std::span<float> moments() { return moments_; }
+  /// Restores the moments (a checkpoint's; `m` empty or one per pixel).
+  void set_moments(std::vector<float> m) { moments_ = std::move(m); }
+  /// The variance of pixel i's mean luminance after n samples (mean_luminance_variance; 0 without moments).
+  float mean_variance(size_t i, uint32_t n) const {
+    return moments_.empty() ? 0.0f : float(mean_luminance_variance(sums_[i], moments_[i], n));
+  }
 
   /// A buffer for splats at arbitrary positions of this film.
   bool splat(SplatBuffer& buffer, Vec2f raster, Rgb value) const {

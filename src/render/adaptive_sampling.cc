@@ -19,10 +19,7 @@ AdaptiveSampler::AdaptiveSampler(int width, int height, float threshold, int min
 float AdaptiveSampler::pixel_error(const PixelSum& sum, float moment, uint32_t n) {
   if (n < 2 || !(sum.weight > 0)) return 0;
   const double mean = double(sum.weighted.luminance()) / double(sum.weight);
-  const double second = double(moment) / double(sum.weight);
-  // Unbiased sample variance of one sample; the mean's variance is that over n.
-  const double var = std::max(0.0, second - mean * mean) * double(n) / double(n - 1);
-  return float(std::sqrt(var / double(n)) / std::max(std::fabs(mean), double(kDarkFloor)));
+  return float(std::sqrt(mean_luminance_variance(sum, moment, n)) / std::max(std::fabs(mean), double(kDarkFloor)));
 }
 
 size_t AdaptiveSampler::end_pass(const Film& film, int pass_spp) {

@@ -27,6 +27,9 @@ struct RenderOutput {
   Image image;
   RenderStats stats;
   std::vector<uint32_t> pixel_spp;  // samples each pixel took, with adaptive sampling (noise_threshold); else empty
+  // With RenderSettings::pixel_variance: the variance of each pixel's mean luminance (Film::mean_variance); else
+  // empty.
+  std::vector<float> variance;
 };
 
 /// Bytes render() allocates for an image of these settings (film and result), checked against the memory budget.

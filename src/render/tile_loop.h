@@ -147,6 +147,18 @@ inline void save_checkpoint(CheckpointClock& clock, const PassProgress& at, cons
 }
 }  // namespace detail
 
+namespace detail {
+// RenderOutput::variance of a finished film: each pixel's from its own count (adaptive sampling) or `spp`.
+inline std::vector<float> pixel_variances(const RenderSettings& settings, const Film& film,
+                                          const std::vector<uint32_t>& pixel_spp, int spp) {
+  std::vector<float> v;
+  if (!settings.pixel_variance || film.moments().empty()) return v;
+  v.resize(film.pixel_count());
+  for (size_t i = 0; i < v.size(); ++i) v[i] = film.mean_variance(i, pixel_spp.empty() ? uint32_t(spp) : pixel_spp[i]);
+  return v;
+}
+}  // namespace detail
+
 #ifdef TORTE_HAVE_MPI
 }  // namespace torte
 #include "render/tile_loop_mpi.h"
@@ -173,8 +185,10 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
       throw Error("noise_threshold does not work with --checkpoint or --resume yet: render without one of them");
     film.track_moments();
   }
-  bool time_up = false;
   using Worker = typename decltype(driver.make_worker())::element_type;
+  constexpr bool kSplats = detail::kSplats<Worker>;
+  if (settings.pixel_variance && !kSplats) film.track_moments();
+  bool time_up = false;
   using Slot = detail::Slot<Worker>;
   PerThread<Slot> slots;
   std::atomic<uint64_t> samples_done{0}, rays_done{0};
@@ -184,7 +198,6 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
   const bool has_images = !scene.textures.images().empty();
   auto texture_failed = [&] { return has_images && !detail::texture_failure(scene).empty(); };
 
-  constexpr bool kSplats = detail::kSplats<Worker>;
   std::vector<SplatBuffer> splats(kSplats ? tiles.size() : 0);
   detail::PassProgress at;
   at.tile_done.assign(tiles.size(), 0);
@@ -315,6 +328,7 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
   out.stats.time_limited = time_up;
   out.stats.spp_reached = first_sample;
   out.pixel_spp = adaptive.pixel_spp();
+  out.variance = detail::pixel_variances(settings, film, out.pixel_spp, first_sample);
   const uint64_t pixels = uint64_t(settings.width) * uint64_t(settings.height);
   out.image = film.image(kSplats && out.stats.samples_done > 0 ? float(double(pixels) / double(out.stats.samples_done))
                                                                : 1.0f);

@@ -171,6 +171,7 @@ RenderOutput run_tiles_distributed(const Scene& scene, const RenderSettings& set
   const uint64_t pixels = uint64_t(settings.width) * uint64_t(settings.height);
   out.image = film.image(splat && out.stats.samples_done > 0 ? float(double(pixels) / double(out.stats.samples_done))
                                                               : 1.0f);
+  out.variance = pixel_variances(settings, film, {}, out.stats.spp_reached);
   out.stats.render_seconds = elapsed();
   return out;
 }

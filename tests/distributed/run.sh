@@ -26,12 +26,13 @@ need_mpi() {
 }
 
 case "$mode" in
-  ranks)  # run.sh ... ranks R integrator: R ranks make the one-process image
+  ranks)  # run.sh ... ranks R integrator [torte flags]: R ranks make the one-process image
     need_mpi
     ranks=$1 integrator=$2
+    flags=("${@:3}")
     args=(width=48 height=40 spp=12 integrator="$integrator")
-    "$torte" --quiet --threads 2 "$scene" "${args[@]}" output=one.exr || fail "one-process render"
-    timeout 120 mpirun --oversubscribe --allow-run-as-root -n "$ranks" "$torte" --threads 1 "$scene" \
+    "$torte" --quiet --threads 2 "${flags[@]}" "$scene" "${args[@]}" output=one.exr || fail "one-process render"
+    timeout 120 mpirun --oversubscribe --allow-run-as-root -n "$ranks" "$torte" --threads 1 "${flags[@]}" "$scene" \
       "${args[@]}" output=many.exr 2>err.txt || { cat err.txt >&2; fail "mpirun -n $ranks"; }
     same one.exr many.exr
     # The other ranks really rendered part of it (a rank rendering the whole frame alone would pass the above).
@@ -50,10 +51,11 @@ case "$mode" in
     grep -q "torte: error: rank 1: .*rank one refuses to render" out.txt || { cat out.txt >&2; fail "no error line naming rank 1"; }
     (( $(echo "$seconds < 10" | bc) )) || fail "took ${seconds} s (limit 10 s)"
     ;;
-  resume)  # run.sh ... resume integrator [R]: Ctrl-C leaves a checkpoint; --resume (on R ranks if given) makes
+  resume)  # run.sh ... resume integrator [R [torte flags]]: Ctrl-C leaves a checkpoint; --resume (on R ranks if given) makes
            # the uninterrupted image. The interruption is of a one-process run: mpirun's own signal handling
            # (SIGTERM, then SIGKILL) is not under test here (docs/distributed.md).
     integrator=$1 ranks=${2:-0}
+    flags=("${@:3}")
     run=("$torte")
     resume=("$torte")
     if [[ $ranks -gt 0 ]]; then
@@ -61,8 +63,8 @@ case "$mode" in
       resume=(mpirun --oversubscribe --allow-run-as-root -n "$ranks" "$torte")
     fi
     args=(width=64 height=64 spp=48 integrator="$integrator")
-    "$torte" --quiet --threads 2 "$scene" "${args[@]}" output=full.exr || fail "uninterrupted render"
-    "${run[@]}" --quiet --threads 1 --checkpoint ck.bin --checkpoint-every 0 "$scene" "${args[@]}" output=cut.exr &
+    "$torte" --quiet --threads 2 "${flags[@]}" "$scene" "${args[@]}" output=full.exr || fail "uninterrupted render"
+    "${run[@]}" --quiet --threads 1 "${flags[@]}" --checkpoint ck.bin --checkpoint-every 0 "$scene" "${args[@]}" output=cut.exr &
     pid=$!
     for _ in $(seq 1 400); do [[ -f ck.bin ]] && break; sleep 0.05; done
     [[ -f ck.bin ]] || fail "no checkpoint appeared"
@@ -72,7 +74,7 @@ case "$mode" in
     [[ $code -eq 130 ]] || fail "interrupted render exited with $code, expected 130 (finished before the interrupt?)"
     [[ -f cut.exr ]] || fail "the interrupted render wrote no partial image"
     [[ ! -f ck.bin.tmp ]] || fail "a temporary checkpoint was left behind"
-    "${resume[@]}" --quiet --threads 1 --resume ck.bin "$scene" "${args[@]}" output=resumed.exr || fail "resume"
+    "${resume[@]}" --quiet --threads 1 "${flags[@]}" --resume ck.bin "$scene" "${args[@]}" output=resumed.exr || fail "resume"
     same full.exr resumed.exr
     ;;
   refuse)  # a checkpoint of other settings is refused with one line
