@@ -87,6 +87,11 @@ case "$mode" in
       { cat err.txt >&2; fail "unclear message"; }
     "$torte" --quiet --resume ck.bin "$src/scenes/shapes.lua" width=32 height=32 spp=4 output=c.exr 2>err.txt
     [[ $? -eq 1 ]] && grep -q "checkpoint is of another render" err.txt || { cat err.txt >&2; fail "other scene accepted"; }
+    # A checkpoint of an older format (version byte 1: no luminance moments) is refused by its version.
+    printf '1' | dd of=ck.bin bs=1 seek=7 conv=notrunc status=none
+    "$torte" --quiet --resume ck.bin "$scene" width=32 height=32 spp=4 output=d.exr 2>err.txt
+    [[ $? -eq 1 ]] && grep -q "a checkpoint of another torte version (format 1, this one reads 2)" err.txt ||
+      { cat err.txt >&2; fail "old format not refused by its version"; }
     ;;
   interrupt)  # Ctrl-C on mpirun writes the partial image from rank 0 and ends the job non-zero. mpirun answers
               # SIGINT with SIGCONT, then SIGTERM and SIGKILL each odls_base_sigkill_timeout later (1 s by default:
