@@ -70,17 +70,20 @@ void add_aovs(RenderedImage& img, const Scene& scene, const Camera& camera, cons
   if (request.denoise)
     for (Aov a : {Aov::Albedo, Aov::Normal, Aov::Depth, Aov::Emission})
       if (std::find(aovs.begin(), aovs.end(), a) == aovs.end()) aovs.push_back(a);
-  const auto counted = std::find(aovs.begin(), aovs.end(), Aov::Samples);
-  const bool samples = counted != aovs.end();
-  if (samples) aovs.erase(counted);
+  // "samples" and "variance" come from the render itself, not from the AOV pass's rays.
+  const auto take = [&](Aov a) {
+    const auto it = std::find(aovs.begin(), aovs.end(), a);
+    if (it == aovs.end()) return false;
+    aovs.erase(it);
+    return true;
+  };
+  const bool samples = take(Aov::Samples), variance = take(Aov::Variance);
   if (!aovs.empty()) img.image.layers = render_aovs(scene, camera, s, aovs, request.samples, cancel);
   if (samples)
     img.image.layers.push_back(samples_layer(s.width, s.height, img.pixel_spp, img.stats.spp_reached));
-  if (aovs.empty()) return;
-  if (request.denoise) {
-    if (!img.variance.empty()) img.image.layers.push_back({"variance", {"Y"}, img.variance});
-    img.image = denoise(img.image);
-  }
+  if ((variance || request.denoise) && !img.variance.empty())
+    img.image.layers.push_back({"variance", {"Y"}, img.variance});
+  if (request.denoise) img.image = denoise(img.image);
 }
 
 namespace {

@@ -389,7 +389,14 @@ int l_render(lua_State* L) {
   if (ctx.noise_threshold_override) s.noise_threshold = *ctx.noise_threshold_override;
   if (ctx.noise_threshold_override || ctx.spp_override > 0 || ctx.quick)  // the rules again, for the overrides
     if (const auto problem = find_settings_problem(s)) throw Error("torte.render: " + problem->message());
-  s.pixel_variance = aov_request.denoise;  // the denoiser's noise level
+  // The film's moments, for the denoiser's noise level or the "variance" AOV.
+  const bool variance_aov =
+      std::find(aov_request.aovs.begin(), aov_request.aovs.end(), Aov::Variance) != aov_request.aovs.end();
+  if (variance_aov && splats_to_film(s.integrator))
+    kw.fail("aovs", std::string("\"variance\" needs a camera integrator (path, direct or igi): ") +
+                        integrator_name(s.integrator) +
+                        " adds light to pixels from other pixels' paths");
+  s.pixel_variance = aov_request.denoise || variance_aov;
   if (ctx.interrupted || interrupt_requested()) throw Interrupted("interrupted: torte.render was not started");
   // The film is checked before the scene is built, so an over-large image fails at once.
   reserve_memory(render_memory_bytes(s), "torte.render: the " + std::to_string(s.width) + "x" +

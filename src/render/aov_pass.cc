@@ -23,7 +23,8 @@ constexpr struct {
                  {Aov::Position, "position"},
                  {Aov::MaterialId, "material_id"},
                  {Aov::Emission, "emission"},
-                 {Aov::Samples, "samples"}};
+                 {Aov::Samples, "samples"},
+                 {Aov::Variance, "variance"}};
 
 // Mirrors and glass are followed this many bounces for the albedo and normal of what they show.
 constexpr int kMaxSpecularBounces = 8;
@@ -258,7 +259,8 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       case Aov::Depth: layers.push_back({"depth", {"Z"}, std::move(acc.depth)}); break;
       case Aov::MaterialId: layers.push_back({"material_id", {"X"}, std::move(acc.material)}); break;
       case Aov::Emission: layers.push_back({"emission", {"R", "G", "B"}, std::move(acc.emitted)}); break;
-      case Aov::Samples: break;  // counted by the render itself (samples_layer)
+      case Aov::Samples: break;   // counted by the render itself (samples_layer)
+      case Aov::Variance: break;  // the render's film keeps it (RenderOutput::variance)
     }
   }
   return layers;

@@ -14,6 +14,9 @@
 //                  where nothing is hit; the most frequent id among the pixel's samples
 //   samples        camera samples the pixel took (a heat map of adaptive sampling, noise_threshold); not traced
 //                  by this pass but counted by the render (samples_layer)
+//   variance       variance of the pixel's mean luminance, from its own samples' moments (the denoiser's noise
+//                  level); not traced by this pass but kept by the render's film (RenderSettings::pixel_variance),
+//                  camera integrators only
 //
 // The pass traces its own camera samples (aov_samples per pixel, stratified over the pixel filter, and the lens),
 // independently of the integrator, so every integrator gets the same AOVs; deterministic for a seed.
@@ -30,10 +33,10 @@
 
 namespace torte {
 
-enum class Aov : uint8_t { Albedo, Normal, Depth, Position, MaterialId, Emission, Samples };
+enum class Aov : uint8_t { Albedo, Normal, Depth, Position, MaterialId, Emission, Samples, Variance };
 
 inline constexpr const char* kAovChoices =
-    "\"albedo\", \"normal\", \"depth\", \"position\", \"material_id\", \"emission\" or \"samples\"";
+    "\"albedo\", \"normal\", \"depth\", \"position\", \"material_id\", \"emission\", \"samples\" or \"variance\"";
 
 /// The AOV named `name` (as torte.render{aovs = ...} and --aovs spell it); false when none has that name.
 bool parse_aov(std::string_view name, Aov& out);
