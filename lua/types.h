@@ -24,7 +24,7 @@ struct RenderedImage {
   bool scene_reused = false;  // the scene of an earlier render was unchanged and served again (SceneCache)
   double aov_seconds = 0;     // the AOV pass and the denoiser, after the render
   std::vector<uint32_t> pixel_spp;  // samples each pixel took, with adaptive sampling; else empty
-  std::vector<float> variance;      // each pixel's mean-luminance variance, when the denoiser asked; else empty
+  std::vector<float> variance;      // each pixel's mean-luminance variance (denoise or the "variance" AOV); else empty
 };
 
 template <> struct LuaName<MaterialDesc> { static constexpr const char* value = "torte.material"; };

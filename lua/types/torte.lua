@@ -89,7 +89,7 @@ function torte_image:mean() end
 ---@return torte.image
 function torte_image:layer(name) end
 
----A denoised copy of the image (an edge-avoiding à-trous filter guided by its `albedo`, `normal` and `depth` layers, which the image must hold: render with `aovs = {"albedo", "normal", "depth"}`, or use `denoise = true` on `torte.render` instead). Pixels an `emission` layer shows lit directly keep their values; a `variance` layer (each pixel's mean-luminance variance, which `denoise = true` renders write) keeps one-pixel glints whose samples agree. The input is kept as layer `"noisy"`.
+---A denoised copy of the image (an edge-avoiding à-trous filter guided by its `albedo`, `normal` and `depth` layers, which the image must hold: render with `aovs = {"albedo", "normal", "depth"}`, or use `denoise = true` on `torte.render` instead). Pixels an `emission` layer shows lit directly keep their values; a `variance` layer (each pixel's mean-luminance variance, which renders write with `denoise = true` or `aovs = {"variance"}`) keeps one-pixel glints whose samples agree. The input is kept as layer `"noisy"`.
 ---@param image any
 ---@param args torte.denoise.args
 ---@return torte.image

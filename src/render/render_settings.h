@@ -85,8 +85,8 @@ struct RenderSettings {
   int adaptive_min_spp = 16;
   double time_limit = 0;     // seconds; 0: none. The render stops at the first pass boundary after it.
   bool stage_stats = false;  // collect RenderStats::stages (torte --stats): one clock reading per stage call
-  // Also return each pixel's variance estimate (RenderOutput::variance; the denoiser's noise level). Camera
-  // integrators only: splatted light has no per-pixel samples to take it from.
+  // Also return each pixel's variance estimate (RenderOutput::variance: the denoiser's noise level, the "variance"
+  // AOV). Camera integrators only: splatted light has no per-pixel samples to take it from.
   bool pixel_variance = false;
   // Checkpoints and resuming (render/render_control.h); null: neither. Not part of what the image depends on.
   const struct RenderControl* control = nullptr;

@@ -179,15 +179,16 @@ RenderOutput run_tiles(const Scene& scene, const RenderSettings& settings, Drive
   AdaptiveSampler adaptive(settings.width, settings.height, settings.noise_threshold,
                            std::min(settings.adaptive_min_spp, settings.spp));
   if (adaptive.enabled()) {
-    // The per-pixel moments live in this process's film only: not in checkpoints, not in tiles sent to ranks.
+    // The sampler's state (which pixels still sample, how many samples each took) lives in this process only:
+    // it is neither checkpointed nor sent to other ranks (the film's moments are).
     if (dist::distributed()) throw Error("noise_threshold does not work across MPI ranks yet: render without it");
     if (settings.control)
       throw Error("noise_threshold does not work with --checkpoint or --resume yet: render without one of them");
-    film.track_moments();
   }
   using Worker = typename decltype(driver.make_worker())::element_type;
   constexpr bool kSplats = detail::kSplats<Worker>;
-  if (settings.pixel_variance && !kSplats) film.track_moments();
+  // The film's luminance moments: adaptive sampling's error estimate, and the variance layer (camera integrators).
+  if (adaptive.enabled() || (settings.pixel_variance && !kSplats)) film.track_moments();
   bool time_up = false;
   using Slot = detail::Slot<Worker>;
   PerThread<Slot> slots;
