@@ -24,6 +24,10 @@ inline void check_packet_size(int packet_size) {
   void ClosestSingle##Name(const Tree& b, const Leaves& t, const RaySoA& r, size_t n, Hit* h) {               \
     ClosestSingle(b, t, r, n, h);                                                                              \
   }                                                                                                            \
+  void ClosestSingleCounted##Name(const Tree& b, const Leaves& t, const RaySoA& r, size_t n, Hit* h,         \
+                                  TraversalCost* c) {                                                          \
+    ClosestSingleCounted(b, t, r, n, h, c);                                                                    \
+  }                                                                                                            \
   void AnySingle##Name(const Tree& b, const Leaves& t, const RaySoA& r, size_t n, uint8_t* o) {               \
     AnySingle(b, t, r, n, o);                                                                                  \
   }                                                                                                            \
@@ -62,11 +66,16 @@ inline void check_packet_size(int packet_size) {
 // The dispatch entry points of traverse.h for one compact pairing (inside namespace torte, under HWY_ONCE).
 #define TORTE_COMPACT_ENTRIES(Name, Tree, Leaves)                                                              \
   HWY_EXPORT(ClosestSingle##Name);                                                                             \
+  HWY_EXPORT(ClosestSingleCounted##Name);                                                                      \
   HWY_EXPORT(AnySingle##Name);                                                                                 \
   HWY_EXPORT(ClosestPackets##Name);                                                                            \
   HWY_EXPORT(AnyPackets##Name);                                                                                \
   void intersect_closest(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, Hit* hits) {  \
     HWY_DYNAMIC_DISPATCH(ClosestSingle##Name)(bvh, tris, rays, count, hits);                                   \
+  }                                                                                                            \
+  void intersect_closest_counted(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count,       \
+                                 Hit* hits, TraversalCost* costs) {                                            \
+    HWY_DYNAMIC_DISPATCH(ClosestSingleCounted##Name)(bvh, tris, rays, count, hits, costs);                     \
   }                                                                                                            \
   void intersect_any(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, uint8_t* occ) {   \
     HWY_DYNAMIC_DISPATCH(AnySingle##Name)(bvh, tris, rays, count, occ);                                        \

@@ -63,6 +63,10 @@ void ClosestSingle4(const WideBvh<4>& b, const TriangleLeaves& t, const RaySoA& 
 void ClosestSingle8(const WideBvh<8>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, Hit* h) {
   ClosestSingle(b, t, r, n, h);
 }
+void ClosestSingleCounted8(const WideBvh<8>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, Hit* h,
+                           TraversalCost* c) {
+  ClosestSingleCounted(b, t, r, n, h, c);
+}
 void AnySingle4(const WideBvh<4>& b, const TriangleLeaves& t, const RaySoA& r, size_t n, uint8_t* o) {
   AnySingle(b, t, r, n, o);
 }
@@ -79,6 +83,7 @@ namespace torte {
 
 HWY_EXPORT(ClosestSingle4);
 HWY_EXPORT(ClosestSingle8);
+HWY_EXPORT(ClosestSingleCounted8);
 HWY_EXPORT(AnySingle4);
 HWY_EXPORT(AnySingle8);
 HWY_EXPORT(TraversalTarget);
@@ -91,6 +96,10 @@ void intersect_closest(const WideBvh<4>& bvh, const TriangleLeaves& tris, const 
 void intersect_closest(const WideBvh<8>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                        Hit* hits) {
   HWY_DYNAMIC_DISPATCH(ClosestSingle8)(bvh, tris, rays, count, hits);
+}
+void intersect_closest_counted(const WideBvh<8>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
+                               Hit* hits, TraversalCost* costs) {
+  HWY_DYNAMIC_DISPATCH(ClosestSingleCounted8)(bvh, tris, rays, count, hits, costs);
 }
 void intersect_any(const WideBvh<4>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                    uint8_t* occluded) {

@@ -36,6 +36,10 @@ void intersect_closest(const WideBvh<4>& bvh, const TriangleLeaves& tris, const 
                        Hit* hits);
 void intersect_closest(const WideBvh<8>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                        Hit* hits);
+/// As intersect_closest, counting: adds to costs[i] the nodes ray i visited and the triangles it tested (a separate
+/// kernel instantiation, as fast as the plain one but for its two additions per node and leaf).
+void intersect_closest_counted(const WideBvh<8>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
+                               Hit* hits, TraversalCost* costs);
 // occluded[i] = 1 if anything blocks ray i in (0, t_max), else 0.
 void intersect_any(const WideBvh<4>& bvh, const TriangleLeaves& tris, const RaySoA& rays, size_t count,
                    uint8_t* occluded);
@@ -58,6 +62,8 @@ void intersect_any_packets(const WideBvh<8>& bvh, const TriangleLeaves& tris, co
 // type, or the default nodes with packed leaves (a tree whose leaf references make_packed_leaves rewrote). The same kernels and semantics (hits in the same leaf order); packet_size as above.
 #define TORTE_COMPACT_TRAVERSAL(Tree, Leaves)                                                                      \
   void intersect_closest(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, Hit* hits);        \
+  void intersect_closest_counted(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, Hit* hits, \
+                                 TraversalCost* costs);                                                            \
   void intersect_any(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, uint8_t* occluded);    \
   void intersect_closest_packets(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, Hit* hits, \
                                  int packet_size = 8);                                                             \

@@ -291,9 +291,11 @@ HWY_INLINE void Prefetch(const Tree& bvh, const Leaves& tris, const float* leaf_
 // Closest hit (kAny = false: fills *hit, returns whether anything was hit) or any hit (returns occlusion), in the
 // subtree (ref, count): the whole tree by default (the root is node 0), or a packet entry's subtree when a packet
 // kernel hands its few remaining rays over to single-ray traversal.
-template <bool kAny, bool kFma, class Tree, class Leaves>
+// kCount: adds the nodes visited and the triangles tested to *cost (the traversal_cost AOV; a separate
+// instantiation, so the renderer's kernels carry no counters).
+template <bool kAny, bool kFma, bool kCount = false, class Tree, class Leaves>
 HWY_INLINE bool TraceRayWith(const Tree& bvh, const Leaves& tris, const SingleRay& r, float t_max,
-                             Hit* hit, uint32_t ref = 0, uint32_t count = 0) {
+                             Hit* hit, uint32_t ref = 0, uint32_t count = 0, TraversalCost* cost = nullptr) {
   constexpr int N = Tree::kWidth;
   using Node = typename Tree::Node;
   struct Entry {
@@ -310,12 +312,14 @@ HWY_INLINE bool TraceRayWith(const Tree& bvh, const Leaves& tris, const SingleRa
   alignas(kDecodesLeaves<Leaves> ? 64 : 4) float buffer[kDecodesLeaves<Leaves> ? kLeafBufferFloats : 1];
   for (;;) {
     if (ref & kLeafFlag) {
+      if constexpr (kCount) cost->prims += count;
       if (IntersectLeaf<kAny>(tris, ref & ~kLeafFlag, count, r, &t_max, hit, buffer)) {
         if constexpr (kAny) return true;
         found = true;
       }
     } else {
       const Node& node = nodes[ref];
+      if constexpr (kCount) ++cost->nodes;
       // The child references (the node's last line) are read right after the slab test, which loads only the
       // plane lines: start loading them alongside, or each node costs two memory latencies in a row on trees
       // beyond the caches (+1 % on the bunny, +3.6 % on bunny-4m, +5 to 7 % on bunny-16m; AVX3, 2026-11-23).
@@ -390,17 +394,19 @@ HWY_INLINE bool TraceRayWith(const Tree& bvh, const Leaves& tris, const SingleRa
 }
 
 // TraceRayWith with the ray's slab test: the FMA test unless a direction component is zero or tiny.
-template <bool kAny, class Tree, class Leaves>
+template <bool kAny, bool kCount = false, class Tree, class Leaves>
 HWY_INLINE bool TraceRay(const Tree& bvh, const Leaves& tris, const SingleRay& r, float t_max,
-                         Hit* hit, uint32_t ref = 0, uint32_t count = 0) {
-  if (HWY_LIKELY(r.fma_slabs())) return TraceRayWith<kAny, true>(bvh, tris, r, t_max, hit, ref, count);
-  return TraceRayWith<kAny, false>(bvh, tris, r, t_max, hit, ref, count);
+                         Hit* hit, uint32_t ref = 0, uint32_t count = 0, TraversalCost* cost = nullptr) {
+  if (HWY_LIKELY(r.fma_slabs())) return TraceRayWith<kAny, true, kCount>(bvh, tris, r, t_max, hit, ref, count, cost);
+  return TraceRayWith<kAny, false, kCount>(bvh, tris, r, t_max, hit, ref, count, cost);
 }
 
 // Rays a block at a time: the per-ray constants for the whole block with vector ops (single_ray-inl.h), then
 // each ray's traversal.
-template <class Tree, class Leaves>
-void ClosestSingle(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, Hit* hits) {
+// costs (ClosestSingleCounted): per ray, the work its search did is added to costs[i].
+template <class Tree, class Leaves, bool kCount = false>
+void ClosestSingle(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, Hit* hits,
+                   TraversalCost* costs = nullptr) {
   constexpr int N = Tree::kWidth;
   RayBlock block;
   float extent[3];
@@ -413,9 +419,16 @@ void ClosestSingle(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size
       Hit& hit = hits[first + j];
       hit = Hit{};
       if (bvh.nodes.empty() || ((block.valid >> j) & 1) == 0) continue;
-      TraceRay<false>(bvh, tris, SingleRay{&block, j, LeafData(tris)}, block.t_max[j], &hit);
+      TraceRay<false, kCount>(bvh, tris, SingleRay{&block, j, LeafData(tris)}, block.t_max[j], &hit, 0, 0,
+                              kCount ? &costs[first + j] : nullptr);
     }
   }
+}
+
+template <class Tree, class Leaves>
+void ClosestSingleCounted(const Tree& bvh, const Leaves& tris, const RaySoA& rays, size_t count, Hit* hits,
+                          TraversalCost* costs) {
+  ClosestSingle<Tree, Leaves, true>(bvh, tris, rays, count, hits, costs);
 }
 
 template <class Tree, class Leaves>

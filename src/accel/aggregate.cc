@@ -66,6 +66,27 @@ void Aggregate::intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKern
   if (instances_ && !instances_->empty()) intersect_instances(rays, count, hits);
 }
 
+bool Aggregate::intersect_counted(const Ray& ray, Hit* hit, TraversalCost* cost) const {
+  *hit = Hit{};
+  root_.intersect_one(ray, hit, cost);
+  if (instances_ && !instances_->empty()) {
+    Ray r = ray;
+    r.t_max = std::min(ray.t_max, hit->t);
+    instance_bvh_.intersect(r, [&](uint32_t i, Ray& world) {
+      const Instance& inst = (*instances_)[i];
+      // In instance space with the direction not renormalized, so t means the same in both spaces.
+      const Ray local = inst.to_world.apply_inverse(world);
+      Hit h;
+      if (!(*prototypes_)[inst.prototype]->geometry.intersect_one(local, &h, cost)) return false;
+      h.instance = i;
+      *hit = h;
+      world.t_max = h.t;
+      return true;
+    }, cost);
+  }
+  return hit->prim != kNoHit;
+}
+
 void Aggregate::occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const {
   root_.occluded(rays, count, blocked, kernel);
   if (instances_ && !instances_->empty()) occluded_instances(rays, count, blocked);

@@ -58,6 +58,10 @@ class Aggregate {
   /// instance's index). `kernel` applies to the root's geometry; packet kernels need neighbouring rays in
   /// aligned groups of their width. Instanced prototypes always trace single rays (binned rays are not coherent).
   void intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const;
+  /// One ray's closest hit (*hit from scratch, as intersect's), adding to *cost the nodes visited and primitives
+  /// tested at every level (the root's sets, the instance BVH2, each entered prototype's set): the
+  /// traversal_cost AOV. Single-ray kernels, instances one at a time, front to back.
+  bool intersect_counted(const Ray& ray, Hit* hit, TraversalCost* cost) const;
   /// blocked[i] = 1 when anything blocks ray i in (0, t_max), else 0.
   void occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const;
   /// The hit's surface in world space (instances map points, normals and tangents to the world); `ray` is the

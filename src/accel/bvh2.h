@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "accel/hit.h"
 #include "core/bounds.h"
 #include "core/ray.h"
 
@@ -75,9 +76,10 @@ class Bvh2 {
   float sah_cost(float traversal_cost = 1.0f) const;
 
   // Closest hit. `hit_prim(prim, ray)` tests one primitive; on a hit closer than ray.t_max it must shrink
-  // ray.t_max and return true. Returns true if anything was hit.
+  // ray.t_max and return true. Returns true if anything was hit. `cost` (optional): adds the inner nodes visited
+  // and the primitives tested.
   template <class HitPrim>
-  bool intersect(Ray& ray, HitPrim&& hit_prim) const;
+  bool intersect(Ray& ray, HitPrim&& hit_prim, TraversalCost* cost = nullptr) const;
   // Any hit: `occluded_prim(prim, ray)` returns true if the primitive blocks the ray in (0, ray.t_max).
   template <class OccludedPrim>
   bool occluded(const Ray& ray, OccludedPrim&& occluded_prim) const;
@@ -88,7 +90,7 @@ class Bvh2 {
 };
 
 template <class HitPrim>
-bool Bvh2::intersect(Ray& ray, HitPrim&& hit_prim) const {
+bool Bvh2::intersect(Ray& ray, HitPrim&& hit_prim, TraversalCost* cost) const {
   if (nodes_.empty()) return false;
   const SlabRay slab(ray);
   float root_near;
@@ -105,6 +107,10 @@ bool Bvh2::intersect(Ray& ray, HitPrim&& hit_prim) const {
   bool hit = false;
   for (;;) {
     const Bvh2Node& n = nodes_[node];
+    if (cost) {
+      if (n.count > 0) cost->prims += n.count;
+      else ++cost->nodes;
+    }
     if (n.count > 0) {
       for (uint32_t i = 0; i < n.count; ++i) hit |= hit_prim(prims_[n.offset + i], ray);
     } else {

@@ -27,10 +27,10 @@ void GeometrySet::build(std::vector<TriangleMesh>& meshes, const std::vector<Qua
   for (const VoxelGridAccel& g : grids) bounds_.extend(g.bounds());
 }
 
-bool GeometrySet::intersect_one(const Ray& ray, Hit* hit) const {
-  if (grid_count() == 0) return shapes_.intersect_one(ray, hit);
-  bool found = shapes_.intersect_one(ray, hit);
-  for (uint32_t g = 0; g < grid_count(); ++g) found |= (*grids_)[g].intersect(ray, g, hit);
+bool GeometrySet::intersect_one(const Ray& ray, Hit* hit, TraversalCost* cost) const {
+  if (grid_count() == 0) return shapes_.intersect_one(ray, hit, cost);
+  bool found = shapes_.intersect_one(ray, hit, cost);
+  for (uint32_t g = 0; g < grid_count(); ++g) found |= (*grids_)[g].intersect(ray, g, hit, cost);
   return found;
 }
 

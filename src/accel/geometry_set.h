@@ -51,8 +51,9 @@ class GeometrySet {
   // `kernel`; voxel grids take packets of 16 for either packet kernel (at 16 rays or more).
   void intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const;
   void occluded(const RaySoA& rays, size_t count, uint8_t* occluded, TraceKernel kernel) const;
-  // One ray: updates *hit when something closer than min(ray.t_max, hit->t) is hit.
-  bool intersect_one(const Ray& ray, Hit* hit) const;
+  // One ray: updates *hit when something closer than min(ray.t_max, hit->t) is hit. `cost` (optional): adds the
+  // work the search did (TraversalCost).
+  bool intersect_one(const Ray& ray, Hit* hit, TraversalCost* cost = nullptr) const;
   bool occluded_one(const Ray& ray) const;
   // The ray (in this set's space, as traced) is needed for voxel hits only.
   SurfaceHit surface(const Hit& hit, const Ray* ray = nullptr) const;

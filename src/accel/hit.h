@@ -18,6 +18,14 @@ struct Hit {
 };
 static_assert(sizeof(Hit) == 20);
 
+/// The work one ray's closest-hit search did, for the traversal_cost AOV (render/aov_pass.h): `nodes`, the
+/// acceleration nodes it visited (wide BVH nodes, BVH2 nodes of quadrics and instances, kd-tree nodes of voxel
+/// grids); `prims`, the primitives it tested (the triangles of every leaf it reached, quadrics, voxel leaves and
+/// the cells of cell shapes).
+struct TraversalCost {
+  uint32_t nodes = 0, prims = 0;
+};
+
 /// The traversal kernel a batch of rays takes: one ray at a time (the SIMD lanes test a node's children), or
 /// packets of 8 or 16 neighbouring rays (the lanes are rays). The render loop traces a tile's camera rays as
 /// kPacket8 and everything else as kSingle; torte.bench times each on any scene.

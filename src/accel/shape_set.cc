@@ -169,13 +169,21 @@ void ShapeSet::pack_triangle_refs(const std::vector<TriangleMesh>& meshes) {
   ref_local_bits_ = uint8_t(local_bits);
 }
 
-bool ShapeSet::intersect_one(const Ray& ray, Hit* hit) const {
+bool ShapeSet::intersect_one(const Ray& ray, Hit* hit, TraversalCost* cost) const {
   Ray r = ray;
   r.t_max = std::min(ray.t_max, hit->t);
   if (!(r.t_max > 0) || empty()) return false;
   const SingleRay one(r);
   Hit h;
-  intersect(one.soa(), 1, &h, TraceKernel::kSingle);
+  if (cost) {
+    if (triangle_count() > 0)
+      with_layout([&](const auto& bvh, const auto& leaves) {
+        intersect_closest_counted(bvh, leaves, one.soa(), 1, &h, cost);
+      });
+    if (quadric_count() > 0) intersect_quadrics(one.soa(), 1, &h, cost);
+  } else {
+    intersect(one.soa(), 1, &h, TraceKernel::kSingle);
+  }
   if (h.prim == kNoHit || !(h.t < hit->t)) return false;
   h.instance = hit->instance;
   *hit = h;
@@ -205,7 +213,7 @@ void ShapeSet::intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKerne
   if (quadric_count() > 0) intersect_quadrics(rays, count, hits);
 }
 
-void ShapeSet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const {
+void ShapeSet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits, TraversalCost* cost) const {
   const uint32_t ntri = triangle_count();
   for (size_t i = 0; i < count; ++i) {
     Ray r = ray_at(rays, i, std::min(rays.t_max[i], hits[i].t));
@@ -217,7 +225,7 @@ void ShapeSet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) c
       ray.t_max = t;
       hits[i] = {t, ntri + q, uv.x, uv.y};
       return true;
-    });
+    }, cost);
   }
 }
 

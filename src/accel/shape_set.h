@@ -66,7 +66,8 @@ class ShapeSet {
   /// blocked[i] = 1 when something blocks ray i in (0, t_max), else 0.
   void occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const;
   /// One ray: updates *hit (keeping its instance) when something closer than min(ray.t_max, hit->t) is hit.
-  bool intersect_one(const Ray& ray, Hit* hit) const;
+  /// `cost` (optional): adds the work the search did (the counting kernels, TraversalCost).
+  bool intersect_one(const Ray& ray, Hit* hit, TraversalCost* cost = nullptr) const;
   bool occluded_one(const Ray& ray) const;
   /// The surface at a triangle or quadric hit of this set; SurfaceHit::object is the local object plus
   /// `object_base`.
@@ -87,7 +88,7 @@ class ShapeSet {
   }
 
  private:
-  void intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits) const;
+  void intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits, TraversalCost* cost = nullptr) const;
   void store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first);
   const std::vector<TriangleMesh>* meshes_ = nullptr;
   const std::vector<Quadric>* quadrics_ = nullptr;

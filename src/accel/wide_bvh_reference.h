@@ -36,9 +36,10 @@ bool call_prim(F& f, uint32_t i, R& ray, uint32_t first, uint32_t count) {
 
 // Closest hit. `hit_prim(i, ray)` tests leaf-order primitive i; on a hit closer than ray.t_max it must shrink
 // ray.t_max and return true. Children are visited near to far by slab entry distance, and popped entries that
-// now lie beyond the closest hit are skipped. Returns true if anything was hit.
+// now lie beyond the closest hit are skipped. Returns true if anything was hit. `cost` (optional): adds the nodes
+// visited and the primitives of the leaves reached, as the counting kernels do (traverse.h).
 template <int N, class HitPrim>
-bool wide_intersect(const WideBvh<N>& bvh, Ray& ray, HitPrim&& hit_prim) {
+bool wide_intersect(const WideBvh<N>& bvh, Ray& ray, HitPrim&& hit_prim, TraversalCost* cost = nullptr) {
   if (bvh.nodes.empty()) return false;
   const SlabRay slab(ray);
   struct Entry {
@@ -56,9 +57,11 @@ bool wide_intersect(const WideBvh<N>& bvh, Ray& ray, HitPrim&& hit_prim) {
     if (e.t_near > ray.t_max) continue;
     if (e.child & kLeafFlag) {
       const uint32_t first = e.child & ~kLeafFlag;
+      if (cost) cost->prims += e.count;
       for (uint32_t i = 0; i < e.count; ++i) hit |= call_prim(hit_prim, first + i, ray, first, e.count);
       continue;
     }
+    if (cost) ++cost->nodes;
     const WideNode<N>& n = bvh.nodes[e.child];
     Entry found[N];
     int k = 0;
@@ -113,8 +116,10 @@ inline void leaf_triangle(const TriangleLeaves& l, uint32_t first, uint32_t coun
 
 // Closest triangle hit in (0, ray.t_max) with torte::intersect_triangle (watertight). Hit::prim is the
 // leaf-order index (kNoHit for a miss); bvh.prim_indices[hit.prim] is the original triangle.
+// `cost` (optional): as wide_intersect's.
 template <int N>
-Hit wide_closest_hit_reference(const WideBvh<N>& bvh, const TriangleLeaves& leaves, const Ray& ray) {
+Hit wide_closest_hit_reference(const WideBvh<N>& bvh, const TriangleLeaves& leaves, const Ray& ray,
+                               TraversalCost* cost = nullptr) {
   Hit hit;
   const WatertightRay wr(ray);
   Ray r = ray;
@@ -126,7 +131,7 @@ Hit wide_closest_hit_reference(const WideBvh<N>& bvh, const TriangleLeaves& leav
     rr.t_max = th.t;
     hit = {th.t, i, th.b1, th.b2};
     return true;
-  });
+  }, cost);
   return hit;
 }
 

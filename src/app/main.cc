@@ -132,7 +132,8 @@ int main(int argc, char** argv) {
   app.add_flag("--list-args", options.list_args,
                "print the scene's arguments (its torte.options) with defaults and types, and exit");
   app.add_option("--aovs", g.aovs,
-                 "add AOV layers to every render's image, e.g. albedo,normal,depth (also position, material_id); "
+                 "add AOV layers to every render's image, e.g. albedo,normal,depth (also position, material_id, "
+                 "emission, samples, variance, traversal_cost); "
                  "EXR outputs hold them as layers")
       ->option_text("LIST");
   app.add_flag("--denoise", options.denoise,

@@ -24,7 +24,8 @@ constexpr struct {
                  {Aov::MaterialId, "material_id"},
                  {Aov::Emission, "emission"},
                  {Aov::Samples, "samples"},
-                 {Aov::Variance, "variance"}};
+                 {Aov::Variance, "variance"},
+                 {Aov::TraversalCost, "traversal_cost"}};
 
 // Mirrors and glass are followed this many bounces for the albedo and normal of what they show.
 constexpr int kMaxSpecularBounces = 8;
@@ -61,6 +62,11 @@ struct AovSample {
   float material = 0;
 };
 
+// The scene's closest hit along `ray`, adding the search's work to *cost when it is given (traversal_cost).
+bool intersect(const Scene& scene, Ray& ray, Hit* hit, TraversalCost* cost) {
+  return cost ? scene.intersect(ray, hit, cost) : scene.intersect(ray, hit);
+}
+
 // Radiance emitted towards -d at the hit: an area light's, or an emitting voxel face's or cell shape's (as
 // stage_emission.h finds them), so that a voxel world's torches and lava are in the layer too.
 Rgb emitted_at(const Scene& scene, const SurfaceHit& s, Vec3f d) {
@@ -72,7 +78,8 @@ Rgb emitted_at(const Scene& scene, const SurfaceHit& s, Vec3f d) {
 
 // Follows the camera ray `ray` (already intersected: `hit`) through specular bounces to the first surface with a
 // non-specular lobe; its BSDF sample weight f |cos| / pdf is an unbiased estimate of its directional albedo.
-AovSample trace_sample(const Scene& scene, Ray ray, Hit hit, bool was_hit, Vec3f forward, Pcg32& rng) {
+AovSample trace_sample(const Scene& scene, Ray ray, Hit hit, bool was_hit, Vec3f forward, Pcg32& rng,
+                       TraversalCost* cost) {
   AovSample out;
   Rgb beta(1);
   for (int bounce = 0; bounce <= kMaxSpecularBounces; ++bounce) {
@@ -116,7 +123,7 @@ AovSample trace_sample(const Scene& scene, Ray ray, Hit hit, bool was_hit, Vec3f
     const Vec3f wi = frame.to_world(bs.wi);
     ray = Ray{offset_origin(s.p, s.ng, wi), wi, kInfinity};
     hit = Hit{};
-    was_hit = scene.intersect(ray, &hit);
+    was_hit = intersect(scene, ray, &hit, cost);
   }
   return out;
 }
@@ -168,10 +175,11 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
   const int w = settings.width, h = settings.height;
   const size_t n = size_t(w) * size_t(h);
   // Per pixel, the finished values of every AOV (a few floats a pixel; only the requested ones are returned).
+  const bool count = std::find(aovs.begin(), aovs.end(), Aov::TraversalCost) != aovs.end();
   struct Sums {
-    std::vector<float> albedo, normal, position, depth, material, emitted;
+    std::vector<float> albedo, normal, position, depth, material, emitted, cost;
   } acc{std::vector<float>(3 * n), std::vector<float>(3 * n), std::vector<float>(3 * n), std::vector<float>(n),
-        std::vector<float>(n),     std::vector<float>(3 * n)};
+        std::vector<float>(n),     std::vector<float>(3 * n), std::vector<float>(count ? 2 * n : 0)};
   const Vec3f forward = normalize(camera.desc().camera_to_world.apply_vector({0, 0, 1}));
   // How the pixel's samples saw area lights: a pixel all of whose few samples hit (or missed) an emitter may
   // still lie on its edge, which a neighbour that saw otherwise betrays (refined after the first pass).
@@ -183,7 +191,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
     for (int x = 0; x < w; ++x) {
       const size_t pixel = size_t(y) * size_t(w) + size_t(x);
       Pcg32 rng(mix_bits(settings.seed * 0x9e3779b97f4a7c15ULL + pixel), 0xa0f5);
-      double wsum = 0, whit = 0, al[3] = {}, nr[3] = {}, ps[3] = {}, em[3] = {}, dp = 0;
+      double wsum = 0, whit = 0, al[3] = {}, nr[3] = {}, ps[3] = {}, em[3] = {}, dp = 0, cost[2] = {};
       ids.clear();
       int emitting = 0;
       for (int k = 0; k < samples; ++k) {
@@ -197,8 +205,11 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
         Ray ray = camera.generate_ray({float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y}, lens);
         Hit hit;
         Ray traced = ray;  // intersect shortens t_max
-        const bool was_hit = scene.intersect(traced, &hit);
-        const AovSample a = trace_sample(scene, ray, hit, was_hit, forward, rng);
+        TraversalCost c;
+        const bool was_hit = intersect(scene, traced, &hit, count ? &c : nullptr);
+        const AovSample a = trace_sample(scene, ray, hit, was_hit, forward, rng, count ? &c : nullptr);
+        // Counts are per sample, not filter-weighted: a negative filter lobe would make them negative.
+        cost[0] += c.nodes, cost[1] += c.prims;
         const double wt = fs.weight;
         wsum += wt;
         al[0] += wt * a.albedo.r, al[1] += wt * a.albedo.g, al[2] += wt * a.albedo.b;
@@ -224,6 +235,8 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       normal = length_squared(normal) > 0 ? normalize(normal) : normal;
       acc.normal[3 * pixel] = normal.x, acc.normal[3 * pixel + 1] = normal.y, acc.normal[3 * pixel + 2] = normal.z;
       acc.depth[pixel] = whit != 0 ? float(dp / whit) : kInfinity;
+      if (count)
+        for (int c = 0; c < 2; ++c) acc.cost[2 * pixel + c] = float(cost[c] / samples);
       int best = -1;
       for (const auto& [id, count] : ids)  // ascending ids: ties go to the smaller
         if (count > best) best = count, acc.material[pixel] = id;
@@ -259,6 +272,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       case Aov::Depth: layers.push_back({"depth", {"Z"}, std::move(acc.depth)}); break;
       case Aov::MaterialId: layers.push_back({"material_id", {"X"}, std::move(acc.material)}); break;
       case Aov::Emission: layers.push_back({"emission", {"R", "G", "B"}, std::move(acc.emitted)}); break;
+      case Aov::TraversalCost: layers.push_back({"traversal_cost", {"nodes", "prims"}, std::move(acc.cost)}); break;
       case Aov::Samples: break;   // counted by the render itself (samples_layer)
       case Aov::Variance: break;  // the render's film keeps it (RenderOutput::variance)
     }

@@ -17,6 +17,9 @@
 //   variance       variance of the pixel's mean luminance, from its own samples' moments (the denoiser's noise
 //                  level); not traced by this pass but kept by the render's film (RenderSettings::pixel_variance),
 //                  camera integrators only
+//   traversal_cost acceleration nodes visited (channel nodes) and primitives tested (channel prims) by the
+//                  closest-hit searches of the pass's rays (the camera ray and the mirrors and glass it follows),
+//                  per sample: a heat map of where the scene's BVH is expensive (Aggregate::intersect_counted)
 //
 // The pass traces its own camera samples (aov_samples per pixel, stratified over the pixel filter, and the lens),
 // independently of the integrator, so every integrator gets the same AOVs; deterministic for a seed.
@@ -33,10 +36,11 @@
 
 namespace torte {
 
-enum class Aov : uint8_t { Albedo, Normal, Depth, Position, MaterialId, Emission, Samples, Variance };
+enum class Aov : uint8_t { Albedo, Normal, Depth, Position, MaterialId, Emission, Samples, Variance, TraversalCost };
 
 inline constexpr const char* kAovChoices =
-    "\"albedo\", \"normal\", \"depth\", \"position\", \"material_id\", \"emission\", \"samples\" or \"variance\"";
+    "\"albedo\", \"normal\", \"depth\", \"position\", \"material_id\", \"emission\", \"samples\", \"variance\" or "
+    "\"traversal_cost\"";
 
 /// The AOV named `name` (as torte.render{aovs = ...} and --aovs spell it); false when none has that name.
 bool parse_aov(std::string_view name, Aov& out);

@@ -90,6 +90,19 @@ bool Scene::intersect(Ray& ray, Hit* hit) const {
   return true;
 }
 
+bool Scene::intersect(Ray& ray, Hit* hit, TraversalCost* cost) const {
+  Hit h;
+  accel_.intersect_counted(ray, &h, cost);
+  if (!alpha_masks.empty()) {
+    const SingleRay one(ray);
+    pass_cut_outs(one.soa(), 1, &h);
+  }
+  if (h.prim == kNoHit) return false;
+  *hit = h;
+  ray.t_max = h.t;
+  return true;
+}
+
 bool Scene::occluded(const Ray& ray) const {
   uint8_t blocked = 0;
   const SingleRay one(ray);

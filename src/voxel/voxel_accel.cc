@@ -27,6 +27,23 @@ struct CellHandler {
   }
 };
 
+// CellHandler that also counts the work of the search (VoxelGridAccel::intersect's cost).
+struct CountingCellHandler {
+  const VoxelGridAccel& grid;
+  TraversalCost* cost;
+  bool intersect(int16_t id, const Ray& r, Hit* h) const {
+    const VoxelCellGeometry* c = grid.cell(id);
+    if (!c || c->set.empty()) return false;
+    Hit tmp;
+    if (!c->set.intersect_one(r, &tmp, cost)) return false;
+    *h = tmp;
+    return true;
+  }
+  bool occluded(int16_t id, const Ray& r) const { return CellHandler{grid}.occluded(id, r); }
+  void count_node() const { ++cost->nodes; }
+  void count_prim() const { ++cost->prims; }
+};
+
 // A grid hit as the set's Hit (the encoding at the top of voxel_accel.h).
 void encode_hit(const VoxelHit& vh, uint32_t index, Hit* hit) {
   hit->t = vh.t;
@@ -49,12 +66,14 @@ Vec3f unit(int axis, float s = 1) {
 
 }  // namespace
 
-bool VoxelGridAccel::intersect(const Ray& ray, uint32_t index, Hit* hit) const {
+bool VoxelGridAccel::intersect(const Ray& ray, uint32_t index, Hit* hit, TraversalCost* cost) const {
   Ray r = to_set.apply_inverse(ray);
   r.t_max = std::min(ray.t_max, hit->t);
   if (!(r.t_max > 0)) return false;
   VoxelHit vh;
-  if (!voxel_intersect(*tree, r, &vh, CellHandler{*this}) || !(vh.t < hit->t)) return false;
+  const bool found = cost ? voxel_intersect(*tree, r, &vh, CountingCellHandler{*this, cost})
+                          : voxel_intersect(*tree, r, &vh, CellHandler{*this});
+  if (!found || !(vh.t < hit->t)) return false;
   encode_hit(vh, index, hit);
   return true;
 }

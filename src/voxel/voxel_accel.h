@@ -68,8 +68,9 @@ struct VoxelGridAccel {
     return id < 0 && k < cells.size() ? cells[k].get() : nullptr;
   }
   // set-space ray; `hit` is updated when the grid is hit closer than min(ray.t_max, hit->t). `index` = the
-  // grid's index in its set.
-  bool intersect(const Ray& ray, uint32_t index, Hit* hit) const;
+  // grid's index in its set. `cost` (optional): adds the kd-tree nodes descended and the voxels and cells tested
+  // (with the cell shapes' own nodes and primitives).
+  bool intersect(const Ray& ray, uint32_t index, Hit* hit, TraversalCost* cost = nullptr) const;
   bool occluded(const Ray& ray) const;
   // The same for coherent set-space rays (camera rays in tiles, shadow rays towards one point), traced in packets
   // of 16 (simd/voxel_packet.h): 2.5x faster than single rays for camera rays, slower for incoherent ones.

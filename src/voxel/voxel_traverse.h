@@ -20,7 +20,9 @@
 //   voxel's corner, same direction, so the same t) and t_max clipped to where the ray leaves the cell (plus
 //   1e-5 relative slack, so faces on the cell's boundary are found from inside); geometry
 //   must lie in [0, 1]^3. Handlers: `bool intersect(int16_t id, const Ray&, Hit*) const` (closest, fills Hit with
-//   t) and `bool occluded(int16_t id, const Ray&) const`.
+//   t) and `bool occluded(int16_t id, const Ray&) const`. A handler may also count the work (the traversal_cost
+//   AOV): `void count_node() const` for each kd-tree node descended, `void count_prim() const` for each solid
+//   voxel or cell tested; handlers without them cost nothing.
 // - id 0: nothing.
 #pragma once
 #include <algorithm>
@@ -54,6 +56,15 @@ inline int voxel_face_v_axis(int axis) { return axis == 1 ? 2 : 1; }
 namespace voxel_detail {
 
 enum Step { kContinue, kHit, kStop };
+
+template <class Cells>
+inline void count_node(const Cells& cells) {
+  if constexpr (requires { cells.count_node(); }) cells.count_node();
+}
+template <class Cells>
+inline void count_prim(const Cells& cells) {
+  if constexpr (requires { cells.count_prim(); }) cells.count_prim();
+}
 
 // The ray relative to the tree's origin.
 struct LocalRay {
@@ -224,6 +235,7 @@ bool trace_tree(const VoxelTree& tree, const Ray& ray, const Cells& cells, Voxel
   const VoxelNode* nodes = tree.nodes().data();
   for (;;) {
     while (!cur.node.is_leaf()) {
+      count_node(cells);
       const int a = cur.node.axis();
       const VoxelNode* kids = nodes + 2 * size_t(cur.node.pair());
       const int lga = --cur.lg[a];
@@ -265,11 +277,13 @@ bool trace_tree(const VoxelTree& tree, const Ray& ray, const Cells& cells, Voxel
       const int bhi[3] = {blo[0] + (1 << cur.lg[0]), blo[1] + (1 << cur.lg[1]), blo[2] + (1 << cur.lg[2])};
       Step s;
       if (id > 0) {
+        count_prim(cells);
         int v[3];
         entry_cell(r, blo, bhi, cur.tn, cur.entry, v);
         s = solid_voxel(r, v, id, cur.tn, cur.entry, out);
       } else {
         s = walk_cells(r, blo, bhi, cur.tn, cur.tf, cur.entry, [&](const int* v, float, float te, int) {
+          count_prim(cells);
           return cell_voxel<kAny>(r, v, id, te, cells, out);
         });
       }
