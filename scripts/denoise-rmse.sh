@@ -2,7 +2,7 @@
 # Measures the denoiser (docs/output.md): for each scene, RMSE against a 4096-spp reference of the 16-spp image
 # raw and denoised (--denoise), the texture detail kept in a crop of textures.lua, and the crops (raw, denoised,
 # reference) into docs/denoise-crops.png.
-# Usage: scripts/denoise-rmse.sh [build dir] [reference spp]   (needs python3-numpy and python3-openimageio:
+# Usage: [SCENES='a b ...'] scripts/denoise-rmse.sh [build dir] [reference spp]   (needs python3-numpy and python3-openimageio:
 # scripts/install-deps.sh --cycles installs them). Writes to out/denoise/; references already there are reused
 # (192x144 at 4096 spp: about 2, 3 and 6 minutes on 2 cores, rendered niced, one at a time).
 set -euo pipefail
@@ -13,7 +13,8 @@ W=${W:-192}
 H=${H:-144}
 OUT=out/denoise
 mkdir -p "$OUT"
-scenes=(cornell-box textures shapes)
+# SCENES='materials lights' measures others (their references are rendered the first time, as above).
+read -r -a scenes <<<"${SCENES:-cornell-box textures shapes}"
 for s in "${scenes[@]}"; do
   ref="$OUT/$s-ref$REF_SPP.exr"
   if [[ ! -f $ref ]]; then
@@ -60,6 +61,7 @@ for s in scenes:
           f"kept {kept:.2f} (projection on the reference's)")
 PY
 # Crops of textures.lua's detail: raw, denoised, reference (4x), for docs/denoise-crops.png.
+[[ " ${scenes[*]} " == *" textures "* ]] || exit 0
 c="$OUT/textures"
 crop="${CW}x${CH}+${CX}+${CY}"
 oiiotool "$c-raw16.png" --cut $crop --resize:filter=box $((CW * 4))x$((CH * 4)) -o "$OUT/crop-raw.png"

@@ -181,6 +181,24 @@ TEST_CASE("traversal cost: quadrics, instances and voxel grids count their level
     REQUIRE(s.intersect(ray, &h, cost));
     CHECK(h.instance == 0);
     *t = h.t;
+    // Any ray: the counting search finds the batched instance level's hit.
+    Pcg32 rng(5);
+    int hits = 0;
+    for (int i = 0; i < 2000; ++i) {
+      const Vec3f o = random_vec(rng) * 6 - Vec3f(3, 3, 3);
+      const Vec3f target{0.5f * rng.next_float(), 0, 2.0f + 3.0f * float(i % k)};
+      Ray a{o, normalize(target - o)}, b = a;
+      Hit ha, hb;
+      TraversalCost c;
+      const bool fa = s.intersect(a, &ha), fb = s.intersect(b, &hb, &c);
+      REQUIRE(fa == fb);
+      hits += fa;
+      if (fa) {
+        REQUIRE(same_bits(ha, hb));
+        REQUIRE(ha.instance == hb.instance);
+      }
+    }
+    CHECK(hits > 100);
   };
   TraversalCost one, eight;
   float t1, t8;

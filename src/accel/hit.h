@@ -20,8 +20,8 @@ static_assert(sizeof(Hit) == 20);
 
 /// The work one ray's closest-hit search did, for the traversal_cost AOV (render/aov_pass.h): `nodes`, the
 /// acceleration nodes it visited (wide BVH nodes, BVH2 nodes of quadrics and instances, kd-tree nodes of voxel
-/// grids); `prims`, the primitives it tested (the triangles of every leaf it reached, quadrics, voxel leaves and
-/// the cells of cell shapes).
+/// grids); `prims`, the primitives it tested (the triangles of every leaf it reached, quadrics, the instances whose
+/// boxes it entered, solid voxels and the cells of cell shapes).
 struct TraversalCost {
   uint32_t nodes = 0, prims = 0;
 };
