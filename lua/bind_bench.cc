@@ -7,6 +7,7 @@
 //            half of it (the groups the packet kernels take), tile by 8x8 tile;
 //   diffuse: one cosine-distributed ray per camera hit around its geometric normal (turned towards the camera);
 //   shadow:  one ray per camera hit towards a point sampled on one of the scene's lights (chosen by hash).
+// Camera and diffuse rays also report their mean nodes visited and primitives tested (Scene::intersect's counts).
 // Google Benchmark is what bench/ uses for fixed workloads; it cannot be driven from a script on the script's
 // own scene, so the repetitions and their statistics are timed here.
 //
@@ -390,6 +391,20 @@ int l_bench(lua_State* L) {
     ref_blocked.assign(rays.size(), 0);
     trace(scene, rays, kind, TraceKernel::kSingle, 1, &ref_hits, &ref_blocked);
   }
+  // The work per closest-hit ray on the reference target (the traversal_cost AOV's counts): the tree's quality
+  // beside its speed. Shadow rays take any-hit kernels, which have no counting variant.
+  uint64_t nodes = 0, prims = 0;
+  if (kind != RayKind::kShadow) {
+    std::vector<TraversalCost> costs(rays.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i < r.end(); ++i) {
+        Ray ray = rays.ray(i);
+        Hit hit;
+        scene.intersect(ray, &hit, &costs[i]);
+      }
+    });
+    for (const TraversalCost& c : costs) nodes += c.nodes, prims += c.prims;
+  }
   simd::use_target(target);  // an unknown or unsupported target fails here, naming the choices
   const std::string used_target = simd::current_target();
   hits.assign(rays.size(), Hit{});
@@ -443,6 +458,10 @@ int l_bench(lua_State* L) {
   set_integer("hits", found);
   set_integer("reference_hits", ref_found);
   set_integer("mismatches", mismatches);
+  if (kind != RayKind::kShadow && n > 0) {
+    set_number("nodes_per_ray", double(nodes) / n);
+    set_number("prims_per_ray", double(prims) / n);
+  }
   // Kernels on other targets may part on a ray grazing an edge (different rounding); more than 1 in 10^4 is a bug.
   lua_pushboolean(L, double(mismatches) <= 1e-4 * n);
   lua_setfield(L, -2, "valid");

@@ -71,12 +71,18 @@ for _, target in ipairs(torte.simd.targets()) do
       -- voxels and the instances, or not.
       if rays == "shadow" then assert(r.hits > 0 and r.hits < r.rays, what .. "occluded " .. r.hits)
       else assert(r.hits == r.rays, what .. "hits " .. r.hits) end
-      -- The rays are the same whatever the kernel and target: so are their number and the reference's hits.
+      -- Closest-hit rays report the work per ray (every one hits something: a node and a primitive at least);
+      -- any-hit rays have no counting kernel.
+      if rays == "shadow" then assert(r.nodes_per_ray == nil and r.prims_per_ray == nil, what .. "counts")
+      else assert(r.nodes_per_ray >= 1 and r.prims_per_ray >= 1, what .. "counts " .. tostring(r.nodes_per_ray)) end
+      -- The rays are the same whatever the kernel and target: so are their number, the reference's hits and
+      -- the counts (taken on the reference target).
       local key = rays
       if counted[key] then
-        assert(counted[key][1] == r.rays and counted[key][2] == r.reference_hits, what .. "ray set changed")
+        assert(counted[key][1] == r.rays and counted[key][2] == r.reference_hits and
+               counted[key][3] == r.nodes_per_ray and counted[key][4] == r.prims_per_ray, what .. "ray set changed")
       else
-        counted[key] = {r.rays, r.reference_hits}
+        counted[key] = {r.rays, r.reference_hits, r.nodes_per_ray, r.prims_per_ray}
       end
     end
   end
