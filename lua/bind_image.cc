@@ -68,7 +68,7 @@ void add_aovs(RenderedImage& img, const Scene& scene, const Camera& camera, cons
               AovRequest request, const std::atomic<bool>* cancel) {
   std::vector<Aov> aovs = request.aovs;
   if (request.denoise)
-    for (Aov a : {Aov::Albedo, Aov::Normal, Aov::Depth, Aov::Emission})
+    for (Aov a : {Aov::Albedo, Aov::Normal, Aov::Depth, Aov::Emission, Aov::Glossiness})
       if (std::find(aovs.begin(), aovs.end(), a) == aovs.end()) aovs.push_back(a);
   // "samples" and "variance" come from the render itself, not from the AOV pass's rays.
   const auto take = [&](Aov a) {

@@ -247,3 +247,32 @@ TEST_CASE("denoise: one-pixel glints whose samples agree are kept when the rende
   s.noisy.layers.back().values.pop_back();
   CHECK_THROWS_AS(denoise(s.noisy), Error);  // a variance layer of the wrong size
 }
+
+TEST_CASE("denoise: a diffuse surface is filtered across normals that differ, a glossy one is not", "[denoise]") {
+  // The smooth lighting of make() on a surface whose normal tilts by a random 10 degrees from pixel to pixel (a
+  // normal-mapped plaster wall): diffuse lighting barely changes with it, but as a glossy surface (or without the
+  // layer) almost every neighbour counts as another surface.
+  Synthetic s = make(0.3f);
+  ImageLayer& normal = s.noisy.layers[1];
+  Pcg32 rng(11);
+  for (size_t i = 0; i < size_t(kW) * kH; ++i) {
+    const float phi = 2 * kPi * rng.next_float(), t = std::sin(10 * kPi / 180);
+    const Vec3f nn = normalize(Vec3f(t * std::cos(phi), t * std::sin(phi), -1));
+    normal.values[3 * i] = nn.x, normal.values[3 * i + 1] = nn.y, normal.values[3 * i + 2] = nn.z;
+  }
+  const auto with_gloss = [&](float gloss) {
+    Image img = s.noisy;
+    img.layers.push_back({"glossiness", {"Y"}, std::vector<float>(size_t(kW) * kH, gloss)});
+    return rmse(denoise(img).pixels, s.truth);
+  };
+  const double noisy = rmse(s.noisy.pixels, s.truth), none = rmse(denoise(s.noisy).pixels, s.truth);
+  const double diffuse = with_gloss(0.9f), glossy = with_gloss(500);
+  INFO("rmse noisy " << noisy << ", no layer " << none << ", diffuse " << diffuse << ", glossy " << glossy);
+  CHECK(diffuse < noisy / 3);
+  CHECK(diffuse < none / 1.5);
+  CHECK(glossy == none);  // the cap: as strict as without the layer
+
+  Image bad = s.noisy;
+  bad.layers.push_back({"glossiness", {"Y"}, std::vector<float>(5, 1.0f)});
+  CHECK_THROWS_WITH(denoise(bad), Catch::Contains("'glossiness'"));
+}

@@ -89,7 +89,7 @@ function torte_image:mean() end
 ---@return torte.image
 function torte_image:layer(name) end
 
----A denoised copy of the image (an edge-avoiding à-trous filter guided by its `albedo`, `normal` and `depth` layers, which the image must hold: render with `aovs = {"albedo", "normal", "depth"}`, or use `denoise = true` on `torte.render` instead). Pixels an `emission` layer shows lit directly keep their values; a `variance` layer (each pixel's mean-luminance variance, which renders write with `denoise = true` or `aovs = {"variance"}`) keeps one-pixel glints whose samples agree. The input is kept as layer `"noisy"`.
+---A denoised copy of the image (an edge-avoiding à-trous filter guided by its `albedo`, `normal` and `depth` layers, which the image must hold: render with `aovs = {"albedo", "normal", "depth"}`, or use `denoise = true` on `torte.render` instead). Pixels an `emission` layer shows lit directly keep their values; a `variance` layer (each pixel's mean-luminance variance, which renders write with `denoise = true` or `aovs = {"variance"}`) keeps one-pixel glints whose samples agree, and a `glossiness` layer lets the normals of diffuse surfaces differ where glossy ones' must agree. The input is kept as layer `"noisy"`.
 ---@param image any
 ---@param args torte.denoise.args
 ---@return torte.image
@@ -670,7 +670,7 @@ function torte.clock() end
 ---@field filter? torte.filter pixel reconstruction filter (`torte.filter.*`) (default torte.filter.box{})
 ---@field stats? boolean collect the per-stage profile into `image.stages` (default false)
 ---@field aovs? string[] extra image layers (written as layers of an EXR) (default none)
----@field denoise? boolean denoise the image, guided by albedo, normal, depth and emission layers it adds and by each pixel's variance (layer `"variance"`); the input stays as layer `"noisy"` (default false)
+---@field denoise? boolean denoise the image, guided by albedo, normal, depth, emission and glossiness layers it adds and by each pixel's variance (layer `"variance"`); the input stays as layer `"noisy"` (default false)
 ---@field aov_samples? integer camera samples per pixel of the AOV pass (default min(spp, 16))
 ---@field bvh_layout? string the triangles' layout for this render (a change rebuilds the scene) (default the scene's (`torte.scene`))
 ---@field memory_budget? any what `bvh_layout = "auto"` compares with, for this render (default the scene's (`torte.scene`))

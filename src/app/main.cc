@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
                "print the scene's arguments (its torte.options) with defaults and types, and exit");
   app.add_option("--aovs", g.aovs,
                  "add AOV layers to every render's image, e.g. albedo,normal,depth (also position, material_id, "
-                 "emission, samples, variance, traversal_cost); "
+                 "emission, samples, variance, traversal_cost, glossiness); "
                  "EXR outputs hold them as layers")
       ->option_text("LIST");
   app.add_flag("--denoise", options.denoise,

@@ -31,11 +31,19 @@ constexpr float kMinAlbedo = 1e-3f;
 // or shadow edge is a minority of it.
 constexpr int kMadRadius = 3;
 
+// The normal weight's cos power for a pixel of glossiness `gloss` (the "glossiness" layer: about cos(theta) for
+// a diffuse surface, far above 1 for a glossy one). Bump-mapped glossy metal reflects a different scene in normals
+// a few degrees apart (cos^128 from a glossiness of 256); the lighting of a diffuse surface changes slowly with its
+// normal, and a strict weight there leaves small curved objects unfiltered (cos^4). Without the layer every pixel
+// is taken as glossy, as before the layer existed.
+float normal_exponent(float gloss) { return std::clamp(0.5f * gloss, 4.0f, 128.0f); }
+
 struct Guide {
   int w = 0, h = 0;
   std::vector<Rgb> albedo;
   std::vector<Vec3f> normal;
   std::vector<float> depth, depth_slope;  // depth and its largest change to a 4-neighbour (for the depth weight)
+  std::vector<float> normal_exponent;     // per pixel, the normal weight's cos power (see normal_exponent())
   // Pixels that see an area light (the "emission" layer, where present): emitted light is much brighter than the
   // lighting next to it, so they are not neighbours of other pixels. Inside an emitter a pixel keeps its value;
   // at its edge the render's coverage of the emitter is noisy, so the pixel is rebuilt as the lighting of its
@@ -57,6 +65,12 @@ Guide make_guide(const Image& image) {
     if (e->channels.size() != 3 || e->values.size() != 3 * count)
       throw Error("torte.denoise: the 'emission' layer does not match the image");
     for (size_t i = 0; i < count; ++i) g.emits[i] = e->at(i)[0] > 0 || e->at(i)[1] > 0 || e->at(i)[2] > 0;
+  }
+  g.normal_exponent.assign(count, 128.0f);
+  if (const ImageLayer* gl = image.layer("glossiness")) {
+    if (gl->channels.size() != 1 || gl->values.size() != count)
+      throw Error("torte.denoise: the 'glossiness' layer does not match the image");
+    for (size_t i = 0; i < count; ++i) g.normal_exponent[i] = normal_exponent(gl->values[i]);
   }
   for (size_t i = 0; i < count; ++i) {
     const float* av = a.at(i);
@@ -90,8 +104,7 @@ float feature_weight(const Guide& g, size_t i, size_t j, float dist) {
   if (g.hit(i) != g.hit(j) || g.emits[i] != g.emits[j]) return 0;
   if (!g.hit(i)) return 1;  // escaped rays: the sky, smooth by construction
   const float nd = std::max(0.0f, dot(g.normal[i], g.normal[j]));
-  // cos^128: bump-mapped glossy metal reflects a different scene in normals a few degrees apart.
-  const float wn = std::pow(nd, 128.0f);
+  const float wn = std::pow(nd, g.normal_exponent[i]);
   const float dz = std::fabs(g.depth[i] - g.depth[j]);
   const float wz = std::exp(-dz / (2 * g.depth_slope[i] * dist + 1e-3f * std::fabs(g.depth[i]) + 1e-6f));
   const Rgb da = g.albedo[i] - g.albedo[j];

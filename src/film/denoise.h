@@ -8,7 +8,8 @@
 // residuals), so a highlight or a shadow edge is not mistaken for noise, and the lighting compared is a median
 // over the pixel and its 4-neighbours, so a firefly is spread over its neighbours rather than kept. A render's
 // "variance" layer (the variance of each pixel's mean luminance; torte.render writes it with denoise = true)
-// keeps one-pixel glints whose samples agree out of that median.
+// keeps one-pixel glints whose samples agree out of that median. A "glossiness" layer (written with denoise =
+// true) sets how closely normals must agree: strictly on glossy surfaces, loosely on diffuse ones.
 #pragma once
 #include "film/image.h"
 

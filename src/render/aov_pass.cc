@@ -25,7 +25,8 @@ constexpr struct {
                  {Aov::Emission, "emission"},
                  {Aov::Samples, "samples"},
                  {Aov::Variance, "variance"},
-                 {Aov::TraversalCost, "traversal_cost"}};
+                 {Aov::TraversalCost, "traversal_cost"},
+                 {Aov::Glossiness, "glossiness"}};
 
 // Mirrors and glass are followed this many bounces for the albedo and normal of what they show.
 constexpr int kMaxSpecularBounces = 8;
@@ -60,6 +61,7 @@ struct AovSample {
   Vec3f normal{0, 0, 0}, position{0, 0, 0};
   float depth = kInfinity;
   float material = 0;
+  float gloss = 0;
 };
 
 // The scene's closest hit along `ray`, adding the search's work to *cost when it is given (traversal_cost).
@@ -103,6 +105,7 @@ AovSample trace_sample(const Scene& scene, Ray ray, Hit hit, bool was_hit, Vec3f
     const TextureContext tc = texture_context(s, 0.0f);
     BsdfSample bs;
     bool sampled = false, non_specular = false;
+    float gloss = 0;
     const float uc = rng.next_float();
     const Vec2f u{rng.next_float(), rng.next_float()};
     dispatch_shaded(m.type, [&](auto tag) {
@@ -110,10 +113,12 @@ AovSample trace_sample(const Scene& scene, Ray ray, Hit hit, bool was_hit, Vec3f
       const auto bsdf = MaterialTraits<T>::bsdf(scene.materials, scene.textures, m.index, tc, TransportMode::Radiance);
       non_specular = bsdf.has_non_specular();
       sampled = bsdf.sample(wo_local, uc, u, &bs) && bs.pdf > 0;
+      if (non_specular) gloss = kPi * bsdf.pdf(wo_local, Vec3f(-wo_local.x, -wo_local.y, wo_local.z));
     });
     if (non_specular || !sampled || bounce == kMaxSpecularBounces) {
       // The first surface that is not a perfect mirror or glass defines albedo and normal.
       out.normal = dot(s.ns, wo) < 0 ? -s.ns : s.ns;
+      out.gloss = std::isfinite(gloss) ? gloss : 0.0f;
       // (A delta lobe picked from a BSDF that also has others counts with its specular weight.)
       if (sampled) out.albedo += beta * bs.weight();
       return out;
@@ -177,9 +182,10 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
   // Per pixel, the finished values of every AOV (a few floats a pixel; only the requested ones are returned).
   const bool count = std::find(aovs.begin(), aovs.end(), Aov::TraversalCost) != aovs.end();
   struct Sums {
-    std::vector<float> albedo, normal, position, depth, material, emitted, cost;
+    std::vector<float> albedo, normal, position, depth, material, emitted, cost, gloss;
   } acc{std::vector<float>(3 * n), std::vector<float>(3 * n), std::vector<float>(3 * n), std::vector<float>(n),
-        std::vector<float>(n),     std::vector<float>(3 * n), std::vector<float>(count ? 2 * n : 0)};
+        std::vector<float>(n),     std::vector<float>(3 * n), std::vector<float>(count ? 2 * n : 0),
+        std::vector<float>(n)};
   const Vec3f forward = normalize(camera.desc().camera_to_world.apply_vector({0, 0, 1}));
   // How the pixel's samples saw area lights: a pixel all of whose few samples hit (or missed) an emitter may
   // still lie on its edge, which a neighbour that saw otherwise betrays (refined after the first pass).
@@ -191,7 +197,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
     for (int x = 0; x < w; ++x) {
       const size_t pixel = size_t(y) * size_t(w) + size_t(x);
       Pcg32 rng(mix_bits(settings.seed * 0x9e3779b97f4a7c15ULL + pixel), 0xa0f5);
-      double wsum = 0, whit = 0, al[3] = {}, nr[3] = {}, ps[3] = {}, em[3] = {}, dp = 0, cost[2] = {};
+      double wsum = 0, whit = 0, al[3] = {}, nr[3] = {}, ps[3] = {}, em[3] = {}, dp = 0, cost[2] = {}, gl = 0;
       ids.clear();
       int emitting = 0;
       for (int k = 0; k < samples; ++k) {
@@ -215,6 +221,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
         al[0] += wt * a.albedo.r, al[1] += wt * a.albedo.g, al[2] += wt * a.albedo.b;
         nr[0] += wt * a.normal.x, nr[1] += wt * a.normal.y, nr[2] += wt * a.normal.z;
         em[0] += wt * a.emitted.r, em[1] += wt * a.emitted.g, em[2] += wt * a.emitted.b;
+        gl += wt * a.gloss;
         emitting += !a.emitted.is_black();
         if (a.hit) {
           whit += wt;
@@ -235,6 +242,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       normal = length_squared(normal) > 0 ? normalize(normal) : normal;
       acc.normal[3 * pixel] = normal.x, acc.normal[3 * pixel + 1] = normal.y, acc.normal[3 * pixel + 2] = normal.z;
       acc.depth[pixel] = whit != 0 ? float(dp / whit) : kInfinity;
+      acc.gloss[pixel] = wsum != 0 ? std::max(0.0f, float(gl / wsum)) : 0.0f;
       if (count)
         for (int c = 0; c < 2; ++c) acc.cost[2 * pixel + c] = float(cost[c] / samples);
       int best = -1;
@@ -273,6 +281,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       case Aov::MaterialId: layers.push_back({"material_id", {"X"}, std::move(acc.material)}); break;
       case Aov::Emission: layers.push_back({"emission", {"R", "G", "B"}, std::move(acc.emitted)}); break;
       case Aov::TraversalCost: layers.push_back({"traversal_cost", {"nodes", "prims"}, std::move(acc.cost)}); break;
+      case Aov::Glossiness: layers.push_back({"glossiness", {"Y"}, std::move(acc.gloss)}); break;
       case Aov::Samples: break;   // counted by the render itself (samples_layer)
       case Aov::Variance: break;  // the render's film keeps it (RenderOutput::variance)
     }

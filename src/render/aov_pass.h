@@ -17,6 +17,9 @@
 //   variance       variance of the pixel's mean luminance, from its own samples' moments (the denoiser's noise
 //                  level); not traced by this pass but kept by the render's film (RenderSettings::pixel_variance),
 //                  camera integrators only
+//   glossiness     pi times the BSDF's pdf of the mirror direction at that surface: cos(theta) <= 1 for a diffuse
+//                  surface, far above 1 for glossy ones (what the denoiser needs to know: the lighting of a glossy
+//                  surface changes with a few degrees of normal, a diffuse one's does not)
 //   traversal_cost acceleration nodes visited (channel nodes) and primitives tested (channel prims) by the
 //                  closest-hit searches of the pass's rays (the camera ray and the mirrors and glass it follows),
 //                  per sample: a heat map of where the scene's BVH is expensive (Aggregate::intersect_counted)
@@ -36,11 +39,13 @@
 
 namespace torte {
 
-enum class Aov : uint8_t { Albedo, Normal, Depth, Position, MaterialId, Emission, Samples, Variance, TraversalCost };
+enum class Aov : uint8_t {
+  Albedo, Normal, Depth, Position, MaterialId, Emission, Samples, Variance, TraversalCost, Glossiness
+};
 
 inline constexpr const char* kAovChoices =
-    "\"albedo\", \"normal\", \"depth\", \"position\", \"material_id\", \"emission\", \"samples\", \"variance\" or "
-    "\"traversal_cost\"";
+    "\"albedo\", \"normal\", \"depth\", \"position\", \"material_id\", \"emission\", \"samples\", \"variance\", "
+    "\"traversal_cost\" or \"glossiness\"";
 
 /// The AOV named `name` (as torte.render{aovs = ...} and --aovs spell it); false when none has that name.
 bool parse_aov(std::string_view name, Aov& out);

@@ -68,9 +68,9 @@ TEST_CASE("aov cli: aovs become EXR layers that read back, in script and command
     CHECK(d.layer("albedo"));
   }
   SECTION("bad names are one error line") {
-    const std::string line = check_error(run_torte(dir, {"--quiet", script, "aovs=albedo,glossiness"}, 30));
+    const std::string line = check_error(run_torte(dir, {"--quiet", script, "aovs=albedo,roughness"}, 30));
     CHECK_THAT(line, Catch::Contains("aovs"));
-    CHECK_THAT(line, Catch::Contains("glossiness"));
+    CHECK_THAT(line, Catch::Contains("roughness"));
     CHECK_THAT(line, Catch::Contains("s.lua"));
     const std::string cli = check_error(run_torte(dir, {"--aovs", "albedo,", script}, 30));
     CHECK_THAT(cli, Catch::Contains("--aovs"));
