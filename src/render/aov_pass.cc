@@ -64,11 +64,6 @@ struct AovSample {
   float gloss = 0;
 };
 
-// The scene's closest hit along `ray`, adding the search's work to *cost when it is given (traversal_cost).
-bool intersect(const Scene& scene, Ray& ray, Hit* hit, TraversalCost* cost) {
-  return cost ? scene.intersect(ray, hit, cost) : scene.intersect(ray, hit);
-}
-
 // Radiance emitted towards -d at the hit: an area light's, or an emitting voxel face's or cell shape's (as
 // stage_emission.h finds them), so that a voxel world's torches and lava are in the layer too.
 Rgb emitted_at(const Scene& scene, const SurfaceHit& s, Vec3f d) {
@@ -128,7 +123,7 @@ AovSample trace_sample(const Scene& scene, Ray ray, Hit hit, bool was_hit, Vec3f
     const Vec3f wi = frame.to_world(bs.wi);
     ray = Ray{offset_origin(s.p, s.ng, wi), wi, kInfinity};
     hit = Hit{};
-    was_hit = intersect(scene, ray, &hit, cost);
+    was_hit = scene.intersect(ray, &hit, cost);
   }
   return out;
 }
@@ -212,7 +207,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
         Hit hit;
         Ray traced = ray;  // intersect shortens t_max
         TraversalCost c;
-        const bool was_hit = intersect(scene, traced, &hit, count ? &c : nullptr);
+        const bool was_hit = scene.intersect(traced, &hit, count ? &c : nullptr);
         const AovSample a = trace_sample(scene, ray, hit, was_hit, forward, rng, count ? &c : nullptr);
         // Counts are per sample, not filter-weighted: a negative filter lobe would make them negative.
         cost[0] += c.nodes, cost[1] += c.prims;

@@ -91,6 +91,7 @@ bool Scene::intersect(Ray& ray, Hit* hit) const {
 }
 
 bool Scene::intersect(Ray& ray, Hit* hit, TraversalCost* cost) const {
+  if (!cost) return intersect(ray, hit);
   Hit h;
   accel_.intersect_counted(ray, &h, cost);
   if (!alpha_masks.empty()) {

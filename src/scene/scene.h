@@ -100,7 +100,7 @@ class Scene {
   // One ray (tests, light tools). The renderer traces whole batches with the functions below.
   bool intersect(Ray& ray, Hit* hit) const;
   /// The same, adding the search's nodes and primitive tests to *cost (Aggregate::intersect_counted; the
-  /// continuation past alpha cut-outs is not counted).
+  /// continuation past alpha cut-outs is not counted); without `cost`, the function above.
   bool intersect(Ray& ray, Hit* hit, TraversalCost* cost) const;
   bool occluded(const Ray& ray) const;
   // Batches: `coherent` rays (neighbours in groups of 8, such as a tile's camera rays) go through the packet
