@@ -175,15 +175,7 @@ bool ShapeSet::intersect_one(const Ray& ray, Hit* hit, TraversalCost* cost) cons
   if (!(r.t_max > 0) || empty()) return false;
   const SingleRay one(r);
   Hit h;
-  if (cost) {
-    if (triangle_count() > 0)
-      with_layout([&](const auto& bvh, const auto& leaves) {
-        intersect_closest_counted(bvh, leaves, one.soa(), 1, &h, cost);
-      });
-    if (quadric_count() > 0) intersect_quadrics(one.soa(), 1, &h, cost);
-  } else {
-    intersect(one.soa(), 1, &h, TraceKernel::kSingle);
-  }
+  intersect(one.soa(), 1, &h, TraceKernel::kSingle, cost);
   if (h.prim == kNoHit || !(h.t < hit->t)) return false;
   h.instance = hit->instance;
   *hit = h;
@@ -198,10 +190,13 @@ bool ShapeSet::occluded_one(const Ray& ray) const {
   return blocked != 0;
 }
 
-void ShapeSet::intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const {
+void ShapeSet::intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel,
+                         TraversalCost* costs) const {
   if (triangle_count() > 0) {
     with_layout([&](const auto& bvh, const auto& leaves) {
-      if (kernel != TraceKernel::kSingle) {
+      if (costs) {
+        intersect_closest_counted(bvh, leaves, rays, count, hits, costs);
+      } else if (kernel != TraceKernel::kSingle) {
         intersect_closest_packets(bvh, leaves, rays, count, hits, int(kernel));
       } else {
         intersect_closest(bvh, leaves, rays, count, hits);
@@ -210,10 +205,10 @@ void ShapeSet::intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKerne
   } else {
     std::fill(hits, hits + count, Hit{});
   }
-  if (quadric_count() > 0) intersect_quadrics(rays, count, hits);
+  if (quadric_count() > 0) intersect_quadrics(rays, count, hits, costs);
 }
 
-void ShapeSet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits, TraversalCost* cost) const {
+void ShapeSet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits, TraversalCost* costs) const {
   const uint32_t ntri = triangle_count();
   for (size_t i = 0; i < count; ++i) {
     Ray r = ray_at(rays, i, std::min(rays.t_max[i], hits[i].t));
@@ -225,7 +220,7 @@ void ShapeSet::intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits, T
       ray.t_max = t;
       hits[i] = {t, ntri + q, uv.x, uv.y};
       return true;
-    }, cost);
+    }, costs ? &costs[i] : nullptr);
   }
 }
 

@@ -61,8 +61,10 @@ class ShapeSet {
   bool empty() const { return primitive_count() == 0; }
 
   /// Closest hits of `count` rays through `kernel`, written from scratch (a miss is Hit{}; Hit::instance stays
-  /// kNoHit). Quadrics are tested one ray at a time whatever the kernel.
-  void intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel) const;
+  /// kNoHit). Quadrics are tested one ray at a time whatever the kernel. `costs` (optional, kSingle only): adds
+  /// each ray's work to costs[i] (the counting kernels, TraversalCost).
+  void intersect(const RaySoA& rays, size_t count, Hit* hits, TraceKernel kernel,
+                 TraversalCost* costs = nullptr) const;
   /// blocked[i] = 1 when something blocks ray i in (0, t_max), else 0.
   void occluded(const RaySoA& rays, size_t count, uint8_t* blocked, TraceKernel kernel) const;
   /// One ray: updates *hit (keeping its instance) when something closer than min(ray.t_max, hit->t) is hit.
@@ -88,7 +90,7 @@ class ShapeSet {
   }
 
  private:
-  void intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits, TraversalCost* cost = nullptr) const;
+  void intersect_quadrics(const RaySoA& rays, size_t count, Hit* hits, TraversalCost* costs) const;
   void store_in_leaf_order(std::vector<TriangleMesh>& meshes, const std::vector<uint32_t>& mesh_first);
   const std::vector<TriangleMesh>* meshes_ = nullptr;
   const std::vector<Quadric>* quadrics_ = nullptr;

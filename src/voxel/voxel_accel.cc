@@ -10,14 +10,15 @@ namespace torte {
 
 namespace {
 
-// Negative ids: the cell's ShapeSet, traced in unit-cell space.
+// Negative ids: the cell's ShapeSet, traced in unit-cell space; `cost` (optional) gets the cell shapes' work.
 struct CellHandler {
   const VoxelGridAccel& grid;
+  TraversalCost* cost = nullptr;
   bool intersect(int16_t id, const Ray& r, Hit* h) const {
     const VoxelCellGeometry* c = grid.cell(id);
     if (!c || c->set.empty()) return false;
     Hit tmp;
-    if (!c->set.intersect_one(r, &tmp)) return false;
+    if (!c->set.intersect_one(r, &tmp, cost)) return false;
     *h = tmp;
     return true;
   }
@@ -27,19 +28,9 @@ struct CellHandler {
   }
 };
 
-// CellHandler that also counts the work of the search (VoxelGridAccel::intersect's cost).
-struct CountingCellHandler {
-  const VoxelGridAccel& grid;
-  TraversalCost* cost;
-  bool intersect(int16_t id, const Ray& r, Hit* h) const {
-    const VoxelCellGeometry* c = grid.cell(id);
-    if (!c || c->set.empty()) return false;
-    Hit tmp;
-    if (!c->set.intersect_one(r, &tmp, cost)) return false;
-    *h = tmp;
-    return true;
-  }
-  bool occluded(int16_t id, const Ray& r) const { return CellHandler{grid}.occluded(id, r); }
+// A CellHandler that also counts the kd-tree's work (VoxelGridAccel::intersect's cost): a type of its own, so the
+// plain traversal has no counters (voxel_traverse.h calls the hooks only where a handler has them).
+struct CountingCellHandler : CellHandler {
   void count_node() const { ++cost->nodes; }
   void count_prim() const { ++cost->prims; }
 };
@@ -71,7 +62,7 @@ bool VoxelGridAccel::intersect(const Ray& ray, uint32_t index, Hit* hit, Travers
   r.t_max = std::min(ray.t_max, hit->t);
   if (!(r.t_max > 0)) return false;
   VoxelHit vh;
-  const bool found = cost ? voxel_intersect(*tree, r, &vh, CountingCellHandler{*this, cost})
+  const bool found = cost ? voxel_intersect(*tree, r, &vh, CountingCellHandler{{*this, cost}})
                           : voxel_intersect(*tree, r, &vh, CellHandler{*this});
   if (!found || !(vh.t < hit->t)) return false;
   encode_hit(vh, index, hit);
