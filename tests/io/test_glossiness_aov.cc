@@ -5,8 +5,7 @@
 
 #include <string>
 
-#include "film/image_io.h"
-#include "test_support.h"
+#include "aov_support.h"
 
 using namespace torte;
 using namespace torte::test;
@@ -37,16 +36,9 @@ TEST_CASE("glossiness aov: at most about 1 on a matte surface, far above on roug
   for (const char* denoise : {"false", "true"}) {
     INFO("denoise=" << denoise);
     const std::string out = dir / (std::string(denoise) + ".exr");
-    const Result r = run_torte(dir, {script, std::string("denoise=") + denoise, "output=" + out}, 120);
-    check_no_crash(r);
-    INFO("stderr: " << r.err);
-    REQUIRE(r.code == 0);
-    const Image img = read_image(out);
-    const ImageLayer* g = img.layer("glossiness");
-    REQUIRE(g);
-    CHECK(g->channels == std::vector<std::string>{"Y"});
-    REQUIRE(g->values.size() == img.pixels.size());
-    const auto at = [&](int x, int y) { return g->values[size_t(y) * 48 + size_t(x)]; };
+    const ImageLayer g =
+        rendered_layer(dir, {script, std::string("denoise=") + denoise, "output=" + out}, out, "glossiness", {"Y"});
+    const auto at = [&](int x, int y) { return g.values[size_t(y) * 48 + size_t(x)]; };
     CHECK(at(24, 0) == 0);  // the sky: no surface
     const float matte = at(31, 16), metal = at(17, 16);  // x = -1 is on the image's right
     INFO("matte " << matte << ", metal " << metal);

@@ -5,8 +5,7 @@
 
 #include <string>
 
-#include "film/image_io.h"
-#include "test_support.h"
+#include "aov_support.h"
 
 using namespace torte;
 using namespace torte::test;
@@ -40,16 +39,7 @@ TEST_CASE("traversal_cost aov: nodes and primitive tests per pixel, from the scr
   const auto layer_of = [&](const std::vector<std::string>& args, const std::string& name) {
     std::vector<std::string> all = {script, "output=" + (dir / name)};
     all.insert(all.end(), args.begin(), args.end());
-    const Result r = run_torte(dir, all, 120);
-    check_no_crash(r);
-    INFO("stderr: " << r.err);
-    REQUIRE(r.code == 0);
-    const Image img = read_image(dir / name);
-    const ImageLayer* l = img.layer("traversal_cost");
-    REQUIRE(l);
-    CHECK(l->channels == std::vector<std::string>{"nodes", "prims"});
-    REQUIRE(l->values.size() == 2 * img.pixels.size());
-    return *l;
+    return rendered_layer(dir, all, dir / name, "traversal_cost", {"nodes", "prims"});
   };
   const ImageLayer lua = layer_of({}, "a.exr");
   const ImageLayer cli = layer_of({"aovs=none", "--aovs", "traversal_cost"}, "b.exr");

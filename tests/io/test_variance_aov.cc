@@ -6,8 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "film/image_io.h"
-#include "test_support.h"
+#include "aov_support.h"
 
 using namespace torte;
 using namespace torte::test;
@@ -36,16 +35,8 @@ TEST_CASE("variance aov: the film's per-pixel variance, zero where samples agree
   TempDir dir("variance", "aov");
   const std::string script = dir.write("s.lua", kScene);
   const auto render = [&](int spp, const std::string& name) {
-    const Result r = run_torte(dir, {script, "spp=" + std::to_string(spp), "output=" + (dir / name)}, 120);
-    check_no_crash(r);
-    INFO("stderr: " << r.err);
-    REQUIRE(r.code == 0);
-    const Image img = read_image(dir / name);
-    const ImageLayer* v = img.layer("variance");
-    REQUIRE(v);
-    CHECK(v->channels == std::vector<std::string>{"Y"});
-    REQUIRE(v->values.size() == img.pixels.size());
-    return *v;
+    return rendered_layer(dir, {script, "spp=" + std::to_string(spp), "output=" + (dir / name)}, dir / name,
+                          "variance", {"Y"});
   };
   const ImageLayer v8 = render(8, "a.exr"), v32 = render(32, "b.exr");
   // The top row sees only the sky: every sample the same radiance, so no variance at all.
