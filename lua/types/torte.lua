@@ -671,7 +671,7 @@ function torte.clock() end
 ---@field stats? boolean collect the per-stage profile into `image.stages` (default false)
 ---@field aovs? string[] extra image layers (written as layers of an EXR) (default none)
 ---@field denoise? boolean denoise the image, guided by albedo, normal, depth, emission and glossiness layers it adds and by each pixel's variance (layer `"variance"`); the input stays as layer `"noisy"` (default false)
----@field aov_samples? integer camera samples per pixel of the AOV pass (default min(spp, 16))
+---@field aov_samples? integer camera samples per pixel of the AOV pass (five times as many where they disagree: outlines, creases) (default min(spp, 16))
 ---@field bvh_layout? string the triangles' layout for this render (a change rebuilds the scene) (default the scene's (`torte.scene`))
 ---@field memory_budget? any what `bvh_layout = "auto"` compares with, for this render (default the scene's (`torte.scene`))
 

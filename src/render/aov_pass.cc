@@ -30,6 +30,13 @@ constexpr struct {
 
 // Mirrors and glass are followed this many bounces for the albedo and normal of what they show.
 constexpr int kMaxSpecularBounces = 8;
+// Pixels whose samples disagree take this many times their samples again (render_aovs: 16 become 16 + 64, a grid
+// twice as fine), and normals disagree when their mean is shorter than this (about 18 degrees of spread).
+constexpr int kEdgeRefine = 4;
+constexpr float kEdgeNormalAgreement = 0.95f;
+// BSDF samples averaged for the albedo at the surface that defines it (no rays traced for them): a glossy or
+// layered BSDF's sample weights vary, and one per camera sample left its albedo noisy.
+constexpr int kAlbedoSamples = 4;
 
 // 1 + a dense index of `m` over the scene's material tables (shaded types in enum order, then mixes, bumps).
 float material_id(const MaterialTables& tables, MaterialRef m) {
@@ -101,6 +108,7 @@ AovSample trace_sample(const Scene& scene, Ray ray, Hit hit, bool was_hit, Vec3f
     BsdfSample bs;
     bool sampled = false, non_specular = false;
     float gloss = 0;
+    Rgb albedo;  // at a non-specular surface: the mean weight of kAlbedoSamples BSDF samples
     const float uc = rng.next_float();
     const Vec2f u{rng.next_float(), rng.next_float()};
     dispatch_shaded(m.type, [&](auto tag) {
@@ -108,14 +116,24 @@ AovSample trace_sample(const Scene& scene, Ray ray, Hit hit, bool was_hit, Vec3f
       const auto bsdf = MaterialTraits<T>::bsdf(scene.materials, scene.textures, m.index, tc, TransportMode::Radiance);
       non_specular = bsdf.has_non_specular();
       sampled = bsdf.sample(wo_local, uc, u, &bs) && bs.pdf > 0;
-      if (non_specular) gloss = kPi * bsdf.pdf(wo_local, Vec3f(-wo_local.x, -wo_local.y, wo_local.z));
+      if (!non_specular) return;
+      gloss = kPi * bsdf.pdf(wo_local, Vec3f(-wo_local.x, -wo_local.y, wo_local.z));
+      if (sampled) albedo = bs.weight();
+      for (int j = 1; j < kAlbedoSamples; ++j) {
+        BsdfSample more;
+        const float uc2 = rng.next_float();
+        const Vec2f u2{rng.next_float(), rng.next_float()};
+        if (bsdf.sample(wo_local, uc2, u2, &more) && more.pdf > 0) albedo += more.weight();
+      }
+      albedo = albedo / float(kAlbedoSamples);
     });
     if (non_specular || !sampled || bounce == kMaxSpecularBounces) {
       // The first surface that is not a perfect mirror or glass defines albedo and normal.
       out.normal = dot(s.ns, wo) < 0 ? -s.ns : s.ns;
       out.gloss = std::isfinite(gloss) ? gloss : 0.0f;
       // (A delta lobe picked from a BSDF that also has others counts with its specular weight.)
-      if (sampled) out.albedo += beta * bs.weight();
+      if (non_specular) out.albedo += beta * albedo;
+      else if (sampled) out.albedo += beta * bs.weight();
       return out;
     }
     beta *= bs.weight();
@@ -194,38 +212,56 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       Pcg32 rng(mix_bits(settings.seed * 0x9e3779b97f4a7c15ULL + pixel), 0xa0f5);
       double wsum = 0, whit = 0, al[3] = {}, nr[3] = {}, ps[3] = {}, em[3] = {}, dp = 0, cost[2] = {}, gl = 0;
       ids.clear();
-      int emitting = 0;
-      for (int k = 0; k < samples; ++k) {
-        // Stratified over the pixel (an m x m grid, jittered): an edge's coverage, which the denoiser takes from
-        // the emission layer, converges faster than with independent samples.
-        const int m = int(std::ceil(std::sqrt(float(samples))));
-        const float cx = float(k % m), cy = float((k / m) % m);
-        const Filter::Sample fs = settings.filter.sample({(cx + rng.next_float()) / float(m),
-                                                          (cy + rng.next_float()) / float(m)});
-        const Vec2f lens{rng.next_float(), rng.next_float()};
-        Ray ray = camera.generate_ray({float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y}, lens);
-        Hit hit;
-        Ray traced = ray;  // intersect shortens t_max
-        TraversalCost c;
-        const bool was_hit = scene.intersect(traced, &hit, count ? &c : nullptr);
-        const AovSample a = trace_sample(scene, ray, hit, was_hit, forward, rng, count ? &c : nullptr);
-        // Counts are per sample, not filter-weighted: a negative filter lobe would make them negative.
-        cost[0] += c.nodes, cost[1] += c.prims;
-        const double wt = fs.weight;
-        wsum += wt;
-        al[0] += wt * a.albedo.r, al[1] += wt * a.albedo.g, al[2] += wt * a.albedo.b;
-        nr[0] += wt * a.normal.x, nr[1] += wt * a.normal.y, nr[2] += wt * a.normal.z;
-        em[0] += wt * a.emitted.r, em[1] += wt * a.emitted.g, em[2] += wt * a.emitted.b;
-        gl += wt * a.gloss;
-        emitting += !a.emitted.is_black();
-        if (a.hit) {
-          whit += wt;
-          ps[0] += wt * a.position.x, ps[1] += wt * a.position.y, ps[2] += wt * a.position.z;
-          dp += wt * a.depth;
+      int emitting = 0, hits = 0, normals = 0;
+      Vec3f normal_sum{0, 0, 0};  // unweighted, for the spread of the pixel's normals
+      // `taken` samples over the pixel: the first m^2 stratified (an m x m grid, jittered, m = floor(sqrt(taken))),
+      // so an edge's coverage, which the denoiser takes from the emission layer, converges faster than with
+      // independent samples; the rest uniform (a grid of ceil(sqrt) cells, as before, left its last rows unsampled
+      // when `taken` was not a square: 8 samples never looked at the pixel's bottom third).
+      const auto take = [&](int taken) {
+        int m = int(std::sqrt(float(taken)));
+        while ((m + 1) * (m + 1) <= taken) ++m;
+        while (m * m > taken) --m;
+        for (int k = 0; k < taken; ++k) {
+          const bool grid = k < m * m;
+          const float cx = grid ? float(k % m) : 0.0f, cy = grid ? float(k / m) : 0.0f, cell = grid ? float(m) : 1.0f;
+          const Filter::Sample fs = settings.filter.sample({(cx + rng.next_float()) / cell,
+                                                            (cy + rng.next_float()) / cell});
+          const Vec2f lens{rng.next_float(), rng.next_float()};
+          Ray ray = camera.generate_ray({float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y}, lens);
+          Hit hit;
+          Ray traced = ray;  // intersect shortens t_max
+          TraversalCost c;
+          const bool was_hit = scene.intersect(traced, &hit, count ? &c : nullptr);
+          const AovSample a = trace_sample(scene, ray, hit, was_hit, forward, rng, count ? &c : nullptr);
+          // Counts are per sample, not filter-weighted: a negative filter lobe would make them negative.
+          cost[0] += c.nodes, cost[1] += c.prims;
+          const double wt = fs.weight;
+          wsum += wt;
+          al[0] += wt * a.albedo.r, al[1] += wt * a.albedo.g, al[2] += wt * a.albedo.b;
+          nr[0] += wt * a.normal.x, nr[1] += wt * a.normal.y, nr[2] += wt * a.normal.z;
+          em[0] += wt * a.emitted.r, em[1] += wt * a.emitted.g, em[2] += wt * a.emitted.b;
+          gl += wt * a.gloss;
+          emitting += !a.emitted.is_black();
+          if (a.hit) {
+            whit += wt;
+            ps[0] += wt * a.position.x, ps[1] += wt * a.position.y, ps[2] += wt * a.position.z;
+            dp += wt * a.depth;
+            ++hits;
+          }
+          if (length_squared(a.normal) > 0) ++normals, normal_sum += a.normal;
+          ++ids[a.material];
         }
-        ++ids[a.material];
-      }
-      const bool partial = emitting > 0 && emitting < samples;
+      };
+      take(samples);
+      // A pixel whose samples disagree (an object's outline, a crease, a texture seam between materials) holds a
+      // blend of features that its few samples estimate poorly, and the denoiser then finds no neighbour like
+      // it: such pixels take kEdgeRefine times as many samples again.
+      const bool mixed = ids.size() > 1 || (hits > 0 && hits < samples) ||
+                         length(normal_sum) < kEdgeNormalAgreement * float(normals);
+      if (mixed && samples > 1) take(kEdgeRefine * samples);
+      const int total = mixed && samples > 1 ? (1 + kEdgeRefine) * samples : samples;
+      const bool partial = emitting > 0 && emitting < total;
       coverage[pixel] = partial ? kPartial : emitting > 0 ? kFull : kNone;
       const Rgb edge = partial ? emitter_edge(scene, camera, settings.filter, x, y, rng) : Rgb(-1);
       for (int c = 0; c < 3; ++c) {
@@ -239,7 +275,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       acc.depth[pixel] = whit != 0 ? float(dp / whit) : kInfinity;
       acc.gloss[pixel] = wsum != 0 ? std::max(0.0f, float(gl / wsum)) : 0.0f;
       if (count)
-        for (int c = 0; c < 2; ++c) acc.cost[2 * pixel + c] = float(cost[c] / samples);
+        for (int c = 0; c < 2; ++c) acc.cost[2 * pixel + c] = float(cost[c] / total);
       int best = -1;
       for (const auto& [id, count] : ids)  // ascending ids: ties go to the smaller
         if (count > best) best = count, acc.material[pixel] = id;
@@ -255,7 +291,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       for (int k = 0; k < 4; ++k)
         if (nx[k] >= 0 && ny[k] >= 0 && nx[k] < w && ny[k] < h) {
           const uint8_t other = coverage[size_t(ny[k]) * size_t(w) + size_t(nx[k])];
-          edge |= other != kPartial && other != coverage[pixel];
+          edge |= other != coverage[pixel];
         }
       if (!edge) continue;
       Pcg32 rng(mix_bits(settings.seed * 0x9e3779b97f4a7c15ULL + pixel), 0xe06e);

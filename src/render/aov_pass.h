@@ -25,7 +25,9 @@
 //                  per sample: a heat map of where the scene's BVH is expensive (Aggregate::intersect_counted)
 //
 // The pass traces its own camera samples (aov_samples per pixel, stratified over the pixel filter, and the lens),
-// independently of the integrator, so every integrator gets the same AOVs; deterministic for a seed.
+// independently of the integrator, so every integrator gets the same AOVs; deterministic for a seed. Pixels whose
+// samples disagree (outlines, creases) take four times as many again, and emitters' outlines are measured on a
+// fine grid (render_aovs).
 #pragma once
 #include <atomic>
 #include <string>
@@ -56,7 +58,7 @@ const char* aov_name(Aov aov);
 ImageLayer samples_layer(int width, int height, const std::vector<uint32_t>& pixel_spp, int spp);
 
 /// The layers of `aovs` (in that order, each once) for `camera`'s view at settings' size, filter and seed, from
-/// `samples` camera samples per pixel. Layer names and channels are as multi-layer EXR readers expect
+/// `samples` camera samples per pixel (5 * samples where they disagree). Layer names and channels are as multi-layer EXR readers expect
 /// (`albedo.R`, `normal.X`, `depth.Z`, `position.X`, `material_id.X`, `emission.R`). Stops early (the
 /// rows not done stay zero) when `cancel` becomes true.
 std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, const RenderSettings& settings,
