@@ -98,7 +98,8 @@ TEST_CASE("aov sampling: an emitter's outline is measured wherever a neighbour s
     const ImageLayer e = layer_of(*scene, Aov::Emission, 16, uint64_t(seed));
     const ImageLayer ref = layer_of(*scene, Aov::Emission, 1024, uint64_t(seed));
     double worst = 0;
-    for (size_t i = 0; i < size_t(kSize * kSize); ++i) worst = std::max(worst, double(std::fabs(e.at(i)[0] - ref.at(i)[0])));
+    for (size_t i = 0; i < size_t(kSize * kSize); ++i)
+      worst = std::max(worst, double(std::fabs(e.at(i)[0] - ref.at(i)[0])));
     INFO("seed " << seed);
     CHECK(worst < 0.1);  // of a radiance of 4
   }

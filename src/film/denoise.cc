@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,9 @@ constexpr float kMinAlbedo = 1e-3f;
 // The noise estimate takes the median residual over a (2 kMadRadius + 1)^2 window: wide enough that a highlight
 // or shadow edge is a minority of it.
 constexpr int kMadRadius = 3;
+// How far (pixels, along x or y) a pixel that sees an emitter looks for the surface lighting it is rebuilt with
+// (see Guide::emits).
+constexpr int kEmitterReach = 16;
 
 // The normal weight's cos power for a pixel of glossiness `gloss` (the "glossiness" layer: about cos(theta) for
 // a diffuse surface, far above 1 for a glossy one). Bump-mapped glossy metal reflects a different scene in normals
@@ -45,9 +49,10 @@ struct Guide {
   std::vector<float> depth, depth_slope;  // depth and its largest change to a 4-neighbour (for the depth weight)
   std::vector<float> normal_exponent;     // per pixel, the normal weight's cos power (see normal_exponent())
   // Pixels that see an area light (the "emission" layer, where present): emitted light is much brighter than the
-  // lighting next to it, so they are not neighbours of other pixels. Inside an emitter a pixel keeps its value;
-  // at its edge the render's coverage of the emitter is noisy, so the pixel is rebuilt as the lighting of its
-  // non-emitting neighbours times its albedo plus the layer's emission (from the AOV pass's stratified samples).
+  // lighting next to it, so they are not neighbours of other pixels. The render's coverage of an emitter is noisy
+  // (at its outline, and wherever small emitters of different colours share pixels, as 10,000 beads do), so such
+  // a pixel is rebuilt as the lighting of the nearest non-emitting pixels (up to 8 pixels away) times its albedo
+  // plus the layer's emission (from the AOV pass's stratified samples); deeper inside an emitter it keeps its value.
   std::vector<uint8_t> emits;
   bool hit(size_t i) const { return std::isfinite(depth[i]); }
 };
@@ -188,6 +193,40 @@ std::vector<float> median_guide(const Guide& g, const std::vector<Rgb>& light, c
   return out;
 }
 
+// For each pixel, the nearest pixel that sees a surface and no emitter (-1: none), by a forward and a backward
+// sweep in which each pixel keeps the nearest of its swept neighbours' answers (nearly Euclidean). Linear in the
+// pixels, where searching squares of growing size would cost a frame filled by one emitter its area many times.
+std::vector<int32_t> nearest_surface(const Guide& g) {
+  const int w = g.w, h = g.h;
+  std::vector<int32_t> seed(size_t(w) * size_t(h), -1);
+  for (size_t i = 0; i < seed.size(); ++i)
+    if (!g.emits[i] && g.hit(i)) seed[i] = int32_t(i);
+  const auto relax = [&](int x, int y, int nx, int ny) {
+    if (nx < 0 || ny < 0 || nx >= w || ny >= h) return;
+    const int32_t s = seed[size_t(ny) * size_t(w) + size_t(nx)];
+    if (s < 0) return;
+    int32_t& mine = seed[size_t(y) * size_t(w) + size_t(x)];
+    const auto dist2 = [&](int32_t t) {
+      const int64_t dx = t % w - x, dy = t / w - y;
+      return dx * dx + dy * dy;
+    };
+    if (mine < 0 || dist2(s) < dist2(mine)) mine = s;
+  };
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      relax(x, y, x - 1, y), relax(x, y, x - 1, y - 1), relax(x, y, x, y - 1), relax(x, y, x + 1, y - 1);
+    }
+    for (int x = w - 1; x >= 0; --x) relax(x, y, x + 1, y);
+  }
+  for (int y = h - 1; y >= 0; --y) {
+    for (int x = w - 1; x >= 0; --x) {
+      relax(x, y, x + 1, y), relax(x, y, x + 1, y + 1), relax(x, y, x, y + 1), relax(x, y, x - 1, y + 1);
+    }
+    for (int x = 0; x < w; ++x) relax(x, y, x - 1, y);
+  }
+  return seed;
+}
+
 }  // namespace
 
 Image denoise(const Image& image, const DenoiseOptions& options) {
@@ -263,23 +302,37 @@ Image denoise(const Image& image, const DenoiseOptions& options) {
 
   // See Guide::emits.
   const ImageLayer* emission = image.layer("emission");
+  const std::vector<int32_t> surface = nearest_surface(g);
   const auto emitter_pixel = [&](size_t i) {
-    const int x = int(i % size_t(w)), y = int(i / size_t(w));
-    Rgb sum;
-    float sw = 0;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int qx = x + dx, qy = y + dy;
-        if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-        const size_t j = size_t(qy) * size_t(w) + size_t(qx);
-        if (g.emits[j] || !g.hit(j) || !g.hit(i)) continue;
-        const float nd = std::max(0.0f, dot(g.normal[i], g.normal[j]));
-        const float wt = std::pow(nd, 64.0f) + 1e-6f;
-        sum += light[j] * wt, sw += wt;
-      }
-    if (sw == 0) return image.pixels[i];  // inside the emitter
+    if (!g.hit(i)) return image.pixels[i];
+    // The lighting of non-emitting surfaces around pixel c (normals like pixel i's weigh most): next to the
+    // emitter, the best guess of what the emitter's own surface reflects.
+    const auto lighting_around = [&](size_t c, Rgb* lighting) {
+      const int x = int(c % size_t(w)), y = int(c / size_t(w));
+      Rgb sum;
+      float sw = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int qx = x + dx, qy = y + dy;
+          if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+          const size_t j = size_t(qy) * size_t(w) + size_t(qx);
+          if (g.emits[j] || !g.hit(j)) continue;
+          const float wt = std::pow(std::max(0.0f, dot(g.normal[i], g.normal[j])), 64.0f) + 1e-6f;
+          sum += light[j] * wt, sw += wt;
+        }
+      if (sw > 0) *lighting = sum / sw;
+      return sw > 0;
+    };
+    Rgb lighting;
+    bool found = lighting_around(i, &lighting);
+    if (!found && surface[i] >= 0) {
+      const size_t s = size_t(surface[i]);
+      const int dx = int(s % size_t(w)) - int(i % size_t(w)), dy = int(s / size_t(w)) - int(i / size_t(w));
+      found = std::max(std::abs(dx), std::abs(dy)) <= kEmitterReach && lighting_around(s, &lighting);
+    }
+    if (!found) return image.pixels[i];  // deep inside a large emitter
     const float* e = emission->at(i);
-    return (sum / sw) * g.albedo[i] + Rgb(e[0], e[1], e[2]);
+    return lighting * g.albedo[i] + Rgb(e[0], e[1], e[2]);
   };
   Image out(w, h);
   out.attributes = image.attributes;

@@ -21,8 +21,9 @@ struct DenoiseOptions {
 };
 
 /// The denoised image: `image`'s pixels filtered as above, its layers kept, plus a layer "noisy" (R, G, B)
-/// holding the input pixels. Pixels an "emission" layer (when present) shows lit directly by emitters or the sky
-/// keep their values. Throws torte::Error when a layer it needs ("albedo", "normal", "depth") is missing, when
+/// holding the input pixels. Pixels that an "emission" layer (when present) shows on an emitter are that emission
+/// plus their albedo times the lighting of the nearest surface pixels (up to 16 pixels away; beyond, they keep their
+/// values). Throws torte::Error when a layer it needs ("albedo", "normal", "depth") is missing, when
 /// one of those or a "variance" layer does not match the image's size, or when the options are out of range.
 Image denoise(const Image& image, const DenoiseOptions& options = {});
 
