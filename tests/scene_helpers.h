@@ -21,6 +21,14 @@ inline std::shared_ptr<MaterialDesc> matte(float albedo) {
   return m;
 }
 
+// An infinite light of one radiance from every direction (a uniform sky).
+inline Light uniform_sky(Rgb radiance) {
+  Light sky;
+  sky.kind = LightKind::Infinite;
+  sky.radiance = radiance;
+  return sky;
+}
+
 // A quadric sphere of `radius` placed by `t`.
 inline ShapeDesc sphere_shape(float radius, const Transform& t, std::shared_ptr<MaterialDesc> m) {
   ShapeDesc s;

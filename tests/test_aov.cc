@@ -20,10 +20,7 @@ constexpr int kSize = 33;  // odd: the centre pixel looks straight at the sphere
 std::shared_ptr<const Scene> sphere_scene(std::shared_ptr<MaterialDesc> material) {
   SceneBuilder b;
   b.add_shape(sphere_shape(1, Transform(), std::move(material)));
-  Light sky;
-  sky.kind = LightKind::Infinite;
-  sky.radiance = Rgb(0.3f);
-  b.add_light(sky);
+  b.add_light(uniform_sky(Rgb(0.3f)));
   return b.flatten();
 }
 
@@ -131,10 +128,7 @@ TEST_CASE("aov: emission is what area lights send to the camera, exact at an emi
   ShapeDesc lamp = sphere_shape(1, Transform(), matte(0.5f));
   lamp.emission = Rgb(4, 2, 1);
   b.add_shape(lamp);
-  Light sky;
-  sky.kind = LightKind::Infinite;
-  sky.radiance = Rgb(0.3f);
-  b.add_light(sky);
+  b.add_light(uniform_sky(Rgb(0.3f)));
   const auto scene = b.flatten();
   const auto layers = aovs_of(*scene, 4);
   const ImageLayer& e = find(layers, "emission");

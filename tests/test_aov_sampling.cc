@@ -23,10 +23,7 @@ std::shared_ptr<const Scene> sphere_scene(std::shared_ptr<MaterialDesc> material
   ShapeDesc sphere = sphere_shape(1, Transform(), std::move(material));
   sphere.emission = emission;
   b.add_shape(sphere);
-  Light sky;
-  sky.kind = LightKind::Infinite;
-  sky.radiance = Rgb(0.3f);
-  b.add_light(sky);
+  b.add_light(uniform_sky(Rgb(0.3f)));
   return b.flatten();
 }
 

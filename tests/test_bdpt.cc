@@ -174,10 +174,7 @@ TEST_CASE("bdpt gives a bitwise identical image at 1 and 2 threads", "[render][b
 TEST_CASE("bdpt refuses lights at infinity and orthographic cameras", "[render][bdpt]") {
   SceneBuilder b;
   b.add_shape(sphere_shape(1, Transform(), matte(0.5f)));
-  Light sky;
-  sky.kind = LightKind::Infinite;
-  sky.radiance = Rgb(1);
-  b.add_light(sky);
+  b.add_light(uniform_sky(Rgb(1)));
   const auto scene = b.flatten();
   RenderSettings s = integrator_settings(IntegratorKind::Bdpt, 8, 1);
   CHECK_THROWS_WITH(render_view(*scene, camera_at({0, 0, -4}, {0, 0, 0}, 40), s),

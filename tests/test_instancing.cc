@@ -134,10 +134,7 @@ TEST_CASE("an instanced scene renders like the flattened one (tile means)", "[in
   for (const ShapeDesc& s : group_shapes()) group->add_shape(s);
   SceneBuilder instanced, flat;
   for (SceneBuilder* b : {&instanced, &flat}) {
-    Light sky;
-    sky.kind = LightKind::Infinite;
-    sky.radiance = Rgb(1);
-    b->add_light(sky);
+    b->add_light(uniform_sky(Rgb(1)));
   }
   CameraDesc cam;
   cam.camera_to_world = look_at({0, 0.5f, -6}, {0, 0.2f, 0}, {0, 1, 0});

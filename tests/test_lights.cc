@@ -418,10 +418,7 @@ TEST_CASE("light_pdf equals the sample pdf for every non-delta light", "[light]"
   sp.sun_radius_degrees = 1;
   sky.sky = make_sky(sp);
   b.add_light(sky);
-  Light uni;
-  uni.kind = LightKind::Infinite;
-  uni.radiance = Rgb(0.5f);
-  b.add_light(uni);
+  b.add_light(uniform_sky(Rgb(0.5f)));
   const auto scene = b.flatten();
   const Vec3f p{0.1f, 0.2f, -0.1f};
   Pcg32 rng(4);

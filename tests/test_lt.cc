@@ -59,10 +59,7 @@ TEST_CASE("lt furnace: a Lambert sphere under a uniform sky, orthographic camera
   for (const float aperture : {0.0f, 0.1f}) {
     SceneBuilder b;
     b.add_shape(sphere_shape(1, Transform(), matte(0.6f)));
-    Light sky;
-    sky.kind = LightKind::Infinite;
-    sky.radiance = Rgb(1);
-    b.add_light(sky);
+    b.add_light(uniform_sky(Rgb(1)));
     const auto scene = b.flatten();
     CameraDesc cam = furnace_camera();
     cam.aperture_radius = aperture;
@@ -153,10 +150,7 @@ TEST_CASE("lt: shading normals get the adjoint correction (a coarse smooth-shade
   s.mesh = std::make_shared<TriangleMesh>(mesh);
   s.material = matte(0.7f);
   b.add_shape(s);
-  Light sky;
-  sky.kind = LightKind::Infinite;
-  sky.radiance = Rgb(1);
-  b.add_light(sky);
+  b.add_light(uniform_sky(Rgb(1)));
   const auto scene = b.flatten();
   CameraDesc cam = camera_at({0.5f, 2, -4}, {0, 0, 0}, 35);
   const Image path = render_view(*scene, cam, integrator_settings(IntegratorKind::Path, 32, 256)).image;

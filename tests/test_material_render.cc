@@ -38,10 +38,7 @@ double furnace(std::shared_ptr<const MaterialDesc> m, int spp = 64, int max_dept
   s.quadric.radius = 1;
   s.material = std::move(m);
   b.add_shape(s);
-  Light sky;
-  sky.kind = LightKind::Infinite;
-  sky.radiance = Rgb(1);
-  b.add_light(sky);
+  b.add_light(uniform_sky(Rgb(1)));
   RenderSettings rs;
   rs.width = rs.height = 24;
   rs.spp = spp;

@@ -144,10 +144,7 @@ TEST_CASE("mlt gives a bitwise identical image at 1 and 2 threads", "[render][ml
 TEST_CASE("mlt refuses what bdpt refuses, naming itself, and checks its keys", "[render][mlt]") {
   SceneBuilder b;
   b.add_shape(sphere_shape(1, Transform(), matte(0.5f)));
-  Light sky;
-  sky.kind = LightKind::Infinite;
-  sky.radiance = Rgb(1);
-  b.add_light(sky);
+  b.add_light(uniform_sky(Rgb(1)));
   const auto scene = b.flatten();
   RenderSettings s = integrator_settings(IntegratorKind::Mlt, 8, 1);
   CHECK_THROWS_WITH(render_view(*scene, camera_at({0, 0, -4}, {0, 0, 0}, 40), s),

@@ -94,10 +94,7 @@ TEST_CASE("furnace: a Lambert sphere under a uniform infinite light renders its 
   for (const float albedo : {0.25f, 0.8f}) {
     SceneBuilder b;
     b.add_shape(sphere_shape(1, Transform(), matte(albedo)));
-    Light sky;
-    sky.kind = LightKind::Infinite;
-    sky.radiance = Rgb(1);
-    b.add_light(sky);
+    b.add_light(uniform_sky(Rgb(1)));
     const auto scene = b.flatten();
     RenderSettings s;
     s.width = s.height = 32;

@@ -29,10 +29,7 @@ SceneBuilder furnace_scene(std::shared_ptr<const MaterialDesc> m) {
   ShapeDesc s = sphere_shape(1, Transform(), nullptr);
   s.material = std::move(m);
   b.add_shape(s);
-  Light sky;
-  sky.kind = LightKind::Infinite;
-  sky.radiance = Rgb(1);
-  b.add_light(sky);
+  b.add_light(uniform_sky(Rgb(1)));
   return b;
 }
 

@@ -39,10 +39,7 @@ std::shared_ptr<Scene> three_material_scene() {
   ShapeDesc lamp = sphere_shape(0.3f, translate({0, 1.5f, -0.5f}), matte(0));
   lamp.emission = Rgb(15);
   b.add_shape(lamp);
-  Light sky;
-  sky.kind = LightKind::Infinite;
-  sky.radiance = Rgb(0.2f);
-  b.add_light(sky);
+  b.add_light(uniform_sky(Rgb(0.2f)));
   return b.flatten();
 }
 

@@ -143,10 +143,7 @@ TEST_CASE("vcm and ppm give a bitwise identical image at 1 and 2 threads", "[ren
 TEST_CASE("vcm refuses what bdpt refuses, naming itself", "[render][vcm]") {
   SceneBuilder b;
   b.add_shape(sphere_shape(1, Transform(), matte(0.5f)));
-  Light sky;
-  sky.kind = LightKind::Infinite;
-  sky.radiance = Rgb(1);
-  b.add_light(sky);
+  b.add_light(uniform_sky(Rgb(1)));
   const auto scene = b.flatten();
   CHECK_THROWS_WITH(render_view(*scene, camera_at({0, 0, -4}, {0, 0, 0}, 40),
                                 integrator_settings(IntegratorKind::Ppm, 8, 1)),

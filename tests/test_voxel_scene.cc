@@ -63,10 +63,7 @@ std::shared_ptr<VoxelShape> test_world() {
 TEST_CASE("voxel grid in a scene renders its per-id materials", "[voxel][render]") {
   SceneBuilder b;
   b.add_shape(voxel_desc(wall_shape(matte(Rgb(0.9f, 0.1f, 0.1f)), matte(Rgb(0.1f, 0.9f, 0.1f))), Transform()));
-  Light sky;
-  sky.kind = LightKind::Infinite;
-  sky.radiance = Rgb(1);
-  b.add_light(sky);
+  b.add_light(test::uniform_sky(Rgb(1)));
   CameraDesc cam;
   cam.camera_to_world = look_at({0, 2, -12}, {0, 2, 0}, {0, 1, 0});
   cam.fov_degrees = 30;
