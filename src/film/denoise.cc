@@ -51,7 +51,7 @@ struct Guide {
   // Pixels that see an area light (the "emission" layer, where present): emitted light is much brighter than the
   // lighting next to it, so they are not neighbours of other pixels. The render's coverage of an emitter is noisy
   // (at its outline, and wherever small emitters of different colours share pixels, as 10,000 beads do), so such
-  // a pixel is rebuilt as the lighting of the nearest non-emitting pixels (up to 8 pixels away) times its albedo
+  // a pixel is rebuilt as the lighting of the nearest non-emitting pixels (kEmitterReach) times its albedo
   // plus the layer's emission (from the AOV pass's stratified samples); deeper inside an emitter it keeps its value.
   std::vector<uint8_t> emits;
   bool hit(size_t i) const { return std::isfinite(depth[i]); }
