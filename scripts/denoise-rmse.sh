@@ -4,7 +4,7 @@
 # reference) into docs/denoise-crops.png.
 # Usage: [SCENES='a b ...'] scripts/denoise-rmse.sh [build dir] [reference spp]   (needs python3-numpy and python3-openimageio:
 # scripts/install-deps.sh --cycles installs them). Writes to out/denoise/; references already there are reused
-# (192x144 at 4096 spp: about 2, 3 and 6 minutes on 2 cores, rendered niced, one at a time).
+# (192x144 at 4096 spp: 0.5 to 3 minutes each on 2 cores, rendered niced, one at a time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build}
@@ -14,7 +14,7 @@ H=${H:-144}
 OUT=out/denoise
 mkdir -p "$OUT"
 # SCENES='materials lights' measures others (their references are rendered the first time, as above).
-read -r -a scenes <<<"${SCENES:-cornell-box textures shapes}"
+read -r -a scenes <<<"${SCENES:-cornell-box textures shapes many-lights}"
 for s in "${scenes[@]}"; do
   ref="$OUT/$s-ref$REF_SPP.exr"
   if [[ ! -f $ref ]]; then
