@@ -212,13 +212,14 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       Pcg32 rng(mix_bits(settings.seed * 0x9e3779b97f4a7c15ULL + pixel), 0xa0f5);
       double wsum = 0, whit = 0, al[3] = {}, nr[3] = {}, ps[3] = {}, em[3] = {}, dp = 0, cost[2] = {}, gl = 0;
       ids.clear();
-      int emitting = 0, hits = 0, normals = 0;
+      int taken_all = 0, emitting = 0, hits = 0, normals = 0;
       Vec3f normal_sum{0, 0, 0};  // unweighted, for the spread of the pixel's normals
       // `taken` samples over the pixel: the first m^2 stratified (an m x m grid, jittered, m = floor(sqrt(taken))),
       // so an edge's coverage, which the denoiser takes from the emission layer, converges faster than with
       // independent samples; the rest uniform (a grid of ceil(sqrt) cells, as before, left its last rows unsampled
       // when `taken` was not a square: 8 samples never looked at the pixel's bottom third).
       const auto take = [&](int taken) {
+        taken_all += taken;
         int m = int(std::sqrt(float(taken)));
         while ((m + 1) * (m + 1) <= taken) ++m;
         while (m * m > taken) --m;
@@ -260,8 +261,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       const bool mixed = ids.size() > 1 || (hits > 0 && hits < samples) ||
                          length(normal_sum) < kEdgeNormalAgreement * float(normals);
       if (mixed && samples > 1) take(kEdgeRefine * samples);
-      const int total = mixed && samples > 1 ? (1 + kEdgeRefine) * samples : samples;
-      const bool partial = emitting > 0 && emitting < total;
+      const bool partial = emitting > 0 && emitting < taken_all;
       coverage[pixel] = partial ? kPartial : emitting > 0 ? kFull : kNone;
       const Rgb edge = partial ? emitter_edge(scene, camera, settings.filter, x, y, rng) : Rgb(-1);
       for (int c = 0; c < 3; ++c) {
@@ -275,7 +275,7 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, co
       acc.depth[pixel] = whit != 0 ? float(dp / whit) : kInfinity;
       acc.gloss[pixel] = wsum != 0 ? std::max(0.0f, float(gl / wsum)) : 0.0f;
       if (count)
-        for (int c = 0; c < 2; ++c) acc.cost[2 * pixel + c] = float(cost[c] / total);
+        for (int c = 0; c < 2; ++c) acc.cost[2 * pixel + c] = float(cost[c] / taken_all);
       int best = -1;
       for (const auto& [id, count] : ids)  // ascending ids: ties go to the smaller
         if (count > best) best = count, acc.material[pixel] = id;
