@@ -58,9 +58,9 @@ const char* aov_name(Aov aov);
 ImageLayer samples_layer(int width, int height, const std::vector<uint32_t>& pixel_spp, int spp);
 
 /// The layers of `aovs` (in that order, each once) for `camera`'s view at settings' size, filter and seed, from
-/// `samples` camera samples per pixel (5 * samples where they disagree). Layer names and channels are as multi-layer EXR readers expect
-/// (`albedo.R`, `normal.X`, `depth.Z`, `position.X`, `material_id.X`, `emission.R`). Stops early (the
-/// rows not done stay zero) when `cancel` becomes true.
+/// `samples` camera samples per pixel (5 * samples where they disagree). Layer names and channels are as
+/// multi-layer EXR readers expect (`albedo.R`, `normal.X`, `depth.Z`, `position.X`, `material_id.X`,
+/// `emission.R`). Stops early (the rows not done stay zero) when `cancel` becomes true.
 std::vector<ImageLayer> render_aovs(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                                     const std::vector<Aov>& aovs, int samples,
                                     const std::atomic<bool>* cancel = nullptr);
