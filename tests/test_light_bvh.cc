@@ -3,13 +3,18 @@
 // chosen while those that can always may be, and lights at infinity keep their fixed share.
 #include <catch2/catch.hpp>
 
+#include <bit>
 #include <cmath>
+#include <memory>
+#include <string>
 
 #include "chi2.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "hwy_targets.h"
 #include "light/emissive_patches.h"
 #include "light/light_bvh.h"
+#include "simd/light_bvh_batch.h"
 
 using namespace torte;
 using namespace torte::test;
@@ -353,4 +358,51 @@ TEST_CASE("light bvh: weighed by visibility, the lights at infinity get more whe
   }
   CHECK(more > trials / 4);
   CHECK(same > trials / 4);
+}
+
+TEST_CASE("light bvh: the batch descent gives sample()'s lights, parts and probabilities bit for bit on every target",
+          "[lights][light_bvh][simd]") {
+  // Quads (cones of normals, some two-sided), points (normals everywhere), spots (emission cones), a Patches light's
+  // parts and directional lights at infinity; receivers with and without normals, some next to the lights.
+  TestScene s = make_scene(40, 30, 10, 2, 41);
+  auto patches = std::make_shared<EmissivePatches>();
+  Pcg32 rng(43);
+  for (int i = 0; i < 60; ++i) {
+    const Vec3f o(rng.next_float() * 20 - 10, rng.next_float() * 20 - 10, rng.next_float() * 20 - 10);
+    const Frame f = Frame::from_z(random_dir(rng));
+    patches->add_parallelogram(o, f.s * 0.4f, f.t * 0.3f, f.n, Rgb(0.5f + rng.next_float()), i % 3 == 0);
+  }
+  patches->finish();
+  Light pl;
+  pl.kind = LightKind::Patches;
+  pl.patches = patches;
+  s.lights.push_back(pl);
+  s.power.push_back(light_power(s.view(), pl));
+  const LightBvh bvh(s.view(), s.lights, s.power);
+  // Counts around the vector widths exercise the padded remainder.
+  for (const size_t count : {size_t(1), size_t(7), size_t(16), size_t(1001)}) {
+    std::vector<Vec3f> p(count), n(count);
+    std::vector<float> u(count);
+    for (size_t k = 0; k < count; ++k) {
+      p[k] = k % 4 == 0 ? s.lights[k % s.lights.size()].position + random_dir(rng) * 0.01f
+                        : Vec3f(rng.next_float() * 24 - 12, rng.next_float() * 24 - 12, rng.next_float() * 24 - 12);
+      n[k] = k % 3 == 0 ? Vec3f(0, 0, 0) : random_dir(rng);
+      u[k] = k % 11 == 0 ? 0x1.fffffep-1f : rng.next_float();
+    }
+    test::for_each_hwy_target(&light_bvh_batch_target_name, [&](const std::string&) {
+      std::vector<int> light(count, -7);
+      std::vector<float> pmf(count, -1);
+      std::vector<uint32_t> part(count, 99);
+      bvh.sample_batch(count, p.data(), n.data(), u.data(), light.data(), pmf.data(), part.data());
+      for (size_t k = 0; k < count; ++k) {
+        float expected_pmf = -1;
+        uint32_t expected_part = 99;
+        const int expected = bvh.sample(p[k], n[k], u[k], &expected_pmf, &expected_part);
+        INFO("count " << count << " receiver " << k);
+        REQUIRE(light[k] == expected);
+        REQUIRE(part[k] == expected_part);
+        REQUIRE(std::bit_cast<uint32_t>(pmf[k]) == std::bit_cast<uint32_t>(expected_pmf));
+      }
+    });
+  }
 }

@@ -66,6 +66,11 @@ class LightBvh {
   /// and in *part which part of it (a Patches light's, to pass to sample_light; 0 for other kinds). -1 (pmf 0)
   /// when no light can reach p.
   int sample(Vec3f p, Vec3f n, float u, float* pmf, uint32_t* part) const;
+  /// sample() for `count` receivers at once: light[k], pmf[k] and part[k] are what sample(p[k], n[k], u[k], ...)
+  /// gives, bit for bit. The descents run side by side in vector lanes (simd/light_bvh_batch.h): one at a time,
+  /// their dependent loads and unpredictable branches made a shading point's light sample cost twice its BSDF's.
+  void sample_batch(size_t count, const Vec3f* p, const Vec3f* n, const float* u, int* light, float* pmf,
+                    uint32_t* part) const;
   /// The probability that sample(p, n, ...) returns `light` and `part` (0 but for Patches lights).
   float pmf(Vec3f p, Vec3f n, int light, uint32_t part = 0) const;
   size_t node_count() const { return packed_.size(); }

@@ -72,9 +72,18 @@ struct LightCandidate {
 struct ShadeNumbers {
   std::vector<float> light_select, light_x, light_y, bsdf_x, bsdf_y, lobe, roulette;
   std::vector<uint32_t> pixel, sample, dim, scratch;  // the requests, and the batch's scratch
+  // The light BVH's choices (LightBvh::sample_batch) for the entries with a non-specular BSDF, in queue order.
+  std::vector<uint32_t> chosen_part;
+  std::vector<Vec3f> chooser_p, chooser_n;
+  std::vector<float> chooser_u, chosen_pmf;
+  std::vector<int> chosen;
   void resize(size_t n) {
-    for (auto* v : {&light_select, &light_x, &light_y, &bsdf_x, &bsdf_y, &lobe, &roulette}) v->resize(n);
-    for (auto* v : {&pixel, &sample, &dim}) v->resize(n);
+    for (auto* v : {&light_select, &light_x, &light_y, &bsdf_x, &bsdf_y, &lobe, &roulette, &chooser_u, &chosen_pmf})
+      v->resize(n);
+    for (auto* v : {&pixel, &sample, &dim, &chosen_part}) v->resize(n);
+    chooser_p.resize(n);
+    chooser_n.resize(n);
+    chosen.resize(n);
     scratch.resize(3 * n);
   }
 };
@@ -283,8 +292,22 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
     sc.wo_local[k] = sc.frame[k].to_local(-ctx.rays.dir(slot));
   }
   if (!scene.lights.empty() && !ctx.rules.sample_all_lights) detail::draw_light_numbers(ctx, queue, sc.u);
+  // The light BVH chooses for every entry with a non-specular BSDF at once, in vector lanes.
+  const bool bvh = !scene.lights.empty() && !ctx.rules.sample_all_lights &&
+                   ctx.rules.light_sampler == LightSamplerKind::Bvh;
+  size_t choosers = 0;
+  for (size_t k = 0; k < n && bvh; ++k) {
+    if (!sc.bsdf[k].has_non_specular()) continue;
+    const SurfaceHit& s = ctx.hits.surface[queue[k]];
+    sc.u.chooser_p[choosers] = s.p;
+    sc.u.chooser_n[choosers] = s.ng;
+    sc.u.chooser_u[choosers++] = sc.u.light_select[k];
+  }
+  if (choosers > 0)
+    scene.light_bvh.sample_batch(choosers, sc.u.chooser_p.data(), sc.u.chooser_n.data(), sc.u.chooser_u.data(),
+                                 sc.u.chosen.data(), sc.u.chosen_pmf.data(), sc.u.chosen_part.data());
   const EmitterView emitters = scene.emitters();  // once, not per light sample
-  for (size_t k = 0; k < n && !scene.lights.empty(); ++k) {
+  for (size_t k = 0, next_choice = 0; k < n && !scene.lights.empty(); ++k) {
     if (!sc.bsdf[k].has_non_specular()) continue;
     const uint32_t slot = queue[k], i = ctx.rays.path[slot];
     const SurfaceHit& s = ctx.hits.surface[slot];
@@ -299,9 +322,15 @@ void shade_queue(const ShadeContext& ctx, std::span<const uint32_t> queue,
     } else {
       float pmf;
       uint32_t part = kWholeLight;  // the BVH picks a part of a Patches light
-      const float u = sc.u.light_select[k];
-      const int l = ctx.rules.light_sampler == LightSamplerKind::Bvh ? scene.light_bvh.sample(s.p, s.ng, u, &pmf, &part)
-                                                                      : scene.light_selection.sample_discrete(u, &pmf);
+      int l;
+      if (bvh) {
+        const size_t c = next_choice++;
+        l = sc.u.chosen[c];
+        pmf = sc.u.chosen_pmf[c];
+        part = sc.u.chosen_part[c];
+      } else {
+        l = scene.light_selection.sample_discrete(sc.u.light_select[k], &pmf);
+      }
       if (l >= 0 && pmf > 0)
         detail::add_candidate(emitters, sc.lights, uint32_t(k), s, sc.frame[k], wo, sc.wo_local[k], scene.lights[l], pmf,
                               Vec2f(sc.u.light_x[k], sc.u.light_y[k]), part);
