@@ -1,7 +1,7 @@
 // The light BVH's descent for many receivers (see light_bvh_batch.h): the Highway kernel and its dispatch entry
 // point. Each lane does LightBvh::importance's and LightBvh::sample_bounded's operations in their order, with
 // std::max / std::min spelled as the selects they are, so the results are the scalar code's bits (no contraction
-// into fused multiply-adds: the scalar code has none either).
+// into fused multiply-adds, which baseline x86-64 does not have).
 #include "core/no_fp_contract.h"  // first: see there
 //
 #include "light_bvh_batch.h"
@@ -145,8 +145,11 @@ HWY_INLINE void DescendLanes(const Node* tree, const float* px, const float* py,
     const MF dead = hn::And(hn::Le(i0, zero), hn::Le(i1, zero));
     const VF p0 = hn::Div(i0, hn::Add(i0, i1));
     const MF left = hn::Lt(u, p0);
-    prob = hn::IfThenElse(left, hn::Mul(prob, p0), hn::Mul(prob, hn::Sub(one, p0)));
-    u = hn::IfThenElse(left, StdMin(hn::Div(u, p0), below_one), StdMin(hn::Div(hn::Sub(u, p0), hn::Sub(one, p0)), below_one));
+    // The chosen side's share: prob * p0 and u / p0 on the left, prob * (1 - p0) and (u - p0) / (1 - p0) on the
+    // right, selected before the one multiply and one divide.
+    const VF share = hn::IfThenElse(left, p0, hn::Sub(one, p0));
+    prob = hn::Mul(prob, share);
+    u = StdMin(hn::Div(hn::IfThenElse(left, u, hn::Sub(u, p0)), share), below_one);
     const VI next = hn::IfThenElse(hn::RebindMask(di, left), at0, at1);
     const VI bits = hn::BitCast(di, hn::GatherIndex(du, words + kBits, next));
     const MF leaf = hn::RebindMask(df, hn::Ne(hn::And(bits, leaf_bit), hn::Zero(di)));

@@ -2,7 +2,10 @@
 // chain of dependent node loads and unpredictable left-or-right branches, so one at a time a core mostly waits;
 // side by side, the lanes' loads are gathers issued together and the branches are selects. Highway code
 // (light_bvh_batch.cc) dispatched at run time like simd/traverse.h; the results are bit for bit those of
-// LightBvh::sample (tests/test_light_bvh.cc, on every target).
+// LightBvh::sample as the baseline build compiles it (tests/test_light_bvh.cc, on every target). The render loop's
+// AVX2 copy of the scalar code fuses some multiplies and adds, so there its probabilities may differ in the last
+// bits; pmf() (the MIS weights) never matched sample() to the bit either (it divides the chosen side's importance
+// by the sum where the descent takes 1 - p0), and a relative 1e-7 in a density changes no image.
 #pragma once
 #include <cstddef>
 #include <cstdint>

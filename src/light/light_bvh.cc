@@ -17,29 +17,12 @@ namespace {
 float safe_sqrt(float v) { return std::sqrt(std::max(v, 0.0f)); }
 float safe_acos(float v) { return std::acos(std::clamp(v, -1.0f, 1.0f)); }
 
-// LightBvh::importance and its helpers round operation by operation in every copy of this file (the render loop's
-// AVX2 copy would fuse multiplies and adds), as the batch descent's lanes do (simd/light_bvh_batch.cc), so that
-// sample_batch's probabilities and pmf()'s agree to the bit. Clang's pragma is scoped to each function body: at
-// file scope it would reach the files after this one in the render loop's unity build.
-#if defined(__clang__)
-#define TORTE_ROUND_EACH_OPERATION _Pragma("clang fp contract(off)")
-#else
-#define TORTE_ROUND_EACH_OPERATION
-#endif
-
 // cos(a - b) and sin(a - b) with the difference clamped at 0 (angles given by their sines and cosines).
 float cos_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
-  TORTE_ROUND_EACH_OPERATION
   return cos_a > cos_b ? 1.0f : cos_a * cos_b + sin_a * sin_b;
 }
 float sin_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
-  TORTE_ROUND_EACH_OPERATION
   return cos_a > cos_b ? 0.0f : sin_a * cos_b - cos_a * sin_b;
-}
-// dot() of core/vec.h, rounded operation by operation.
-float dot_rounded(Vec3f a, Vec3f b) {
-  TORTE_ROUND_EACH_OPERATION
-  return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 
 Vec3f rotate(Vec3f v, Vec3f axis, float angle) {  // Rodrigues
@@ -124,15 +107,13 @@ LightBvh::PackedNode LightBvh::pack(const LightBounds& b) {
 }
 
 float LightBvh::importance(const PackedNode& nd, Vec3f p, Vec3f n, float min_d2) {
-  TORTE_ROUND_EACH_OPERATION  // see dot_rounded
   const float phi = nd.phi;
   if (phi <= 0) return 0;
   const Vec3f c = nd.center;
   // Clamp the distance at an eighth of the box's diagonal: inside or next to it the 1/d^2 falloff means nothing.
   // At half the diagonal (the first choice) a point inside a large box saw it as far away as its sibling's
   // centre, so the descent stayed uniform for the top levels (10,000 beads: 1.13x better than by power alone).
-  const Vec3f pc = p - c;
-  const float dc2 = dot_rounded(pc, pc);
+  const float dc2 = length_squared(p - c);
   const float d2 = std::max({dc2, nd.diag2 * (1.0f / 64), min_d2});
   if (d2 == 0) return phi;  // a point light at p itself
   const float r2 = nd.diag2 * 0.25f;  // the box's bounding sphere, squared
@@ -145,13 +126,13 @@ float LightBvh::importance(const PackedNode& nd, Vec3f p, Vec3f n, float min_d2)
     // The receiver's cosine bound cos(max(0, theta_i - theta_b)) with the angles' sines and cosines scaled by
     // the distance dc (cos_i = a / dc, cos_b = s_b / dc, sin_b = r / dc, sin_i = s_i / dc): one root fewer than
     // from the angles themselves.
-    const float a = std::fabs(dot_rounded(pc, n)), s_b = safe_sqrt(dc2 - r2);
+    const float a = std::fabs(dot(p - c, n)), s_b = safe_sqrt(dc2 - r2);
     if (a > s_b) return phi / d2;
     const float s_i = safe_sqrt(dc2 - a * a), r = 0.5f * std::sqrt(nd.diag2);
     return phi / d2 * (std::max(0.0f, a * s_b + s_i * r) / dc2);  // (d2 * dc2 could overflow far away)
   }
-  const Vec3f wi = pc / std::sqrt(dc2);  // normalize(p - c)
-  float cos_w = dot_rounded(nd.w, wi);
+  const Vec3f wi = normalize(p - c);
+  float cos_w = dot(nd.w, wi);
   if (nd.part_bits & PackedNode::kTwoSided) cos_w = std::fabs(cos_w);
   const float sin_w = safe_sqrt(1 - cos_w * cos_w);
   // The cone of directions from p that reach the box: everything when p is inside its bounding sphere.
@@ -163,7 +144,7 @@ float LightBvh::importance(const PackedNode& nd, Vec3f p, Vec3f n, float min_d2)
   if (cos_p <= nd.cos_e) return 0;
   float importance = phi * cos_p / d2;
   if (has_n) {  // the receiver's cosine, over the box's extent
-    const float cos_i = std::fabs(dot_rounded(wi, n)), sin_i = safe_sqrt(1 - cos_i * cos_i);
+    const float cos_i = std::fabs(dot(wi, n)), sin_i = safe_sqrt(1 - cos_i * cos_i);
     importance *= cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
   }
   return std::max(importance, 0.0f);

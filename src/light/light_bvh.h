@@ -67,8 +67,9 @@ class LightBvh {
   /// when no light can reach p.
   int sample(Vec3f p, Vec3f n, float u, float* pmf, uint32_t* part) const;
   /// sample() for `count` receivers at once: light[k], pmf[k] and part[k] are what sample(p[k], n[k], u[k], ...)
-  /// gives, bit for bit. The descents run side by side in vector lanes (simd/light_bvh_batch.h): one at a time,
-  /// their dependent loads and unpredictable branches made a shading point's light sample cost twice its BSDF's.
+  /// gives, bit for bit where sample() is compiled without fused multiply-adds (simd/light_bvh_batch.h). The
+  /// descents run side by side in vector lanes: one at a time, their dependent loads and unpredictable branches
+  /// made a shading point's light sample cost twice its BSDF's.
   void sample_batch(size_t count, const Vec3f* p, const Vec3f* n, const float* u, int* light, float* pmf,
                     uint32_t* part) const;
   /// The probability that sample(p, n, ...) returns `light` and `part` (0 but for Patches lights).
