@@ -5,7 +5,8 @@
 # (simd_msamples/scalar_msamples for the shading cases of bench_shading.cc, whose rate counter is Msamples).
 # Usage: bench/scalar_vs_simd.sh SIMD_TORTE_BENCH SCALAR_TORTE_BENCH [FILTER [extra Google Benchmark args...]]
 # Default filter: the wide8 traversal cases of primary rays (closest hit) and shadow rays (any hit), single rays
-# and packets of 8 and 16, and the shading cases (wavefront kernels, per-hit baseline, phase-2 BSDF evaluation).
+# and packets of 8 and 16, the shading cases (wavefront kernels, per-hit baseline, phase-2 BSDF evaluation) and
+# the light BVH's descent (one receiver at a time, and the batch in vector lanes).
 # Used by `make bench-scalar-vs-simd`.
 set -euo pipefail
 if (($# < 2)); then
@@ -13,7 +14,7 @@ if (($# < 2)); then
   exit 2
 fi
 simd=$1 scalar=$2
-filter=${3:-'/(primary/closest|shadow/any)/wide8/|^(shading|eval)/'}
+filter=${3:-'/(primary/closest|shadow/any)/wide8/|^(shading|eval|light_bvh)/'}
 shift $(($# >= 3 ? 3 : 2))
 extra=("$@")
 ((${#extra[@]})) || extra=(--benchmark_min_time=0.1)
