@@ -56,7 +56,8 @@ HWY_INLINE VF StdMin(VF a, VF b) { return hn::IfThenElse(hn::Lt(b, a), b, a); }
 HWY_INLINE VF SafeSqrt(VF v) { return hn::Sqrt(StdMax(v, hn::Zero(DF()))); }
 // light_bvh.cc's cos_sub_clamped and sin_sub_clamped.
 HWY_INLINE VF CosSub(VF sin_a, VF cos_a, VF sin_b, VF cos_b) {
-  return hn::IfThenElse(hn::Gt(cos_a, cos_b), hn::Set(DF(), 1.0f), hn::Add(hn::Mul(cos_a, cos_b), hn::Mul(sin_a, sin_b)));
+  const VF rest = hn::Add(hn::Mul(cos_a, cos_b), hn::Mul(sin_a, sin_b));
+  return hn::IfThenElse(hn::Gt(cos_a, cos_b), hn::Set(DF(), 1.0f), rest);
 }
 HWY_INLINE VF SinSub(VF sin_a, VF cos_a, VF sin_b, VF cos_b) {
   return hn::IfThenElse(hn::Gt(cos_a, cos_b), hn::Zero(DF()), hn::Sub(hn::Mul(sin_a, cos_b), hn::Mul(cos_a, sin_b)));
@@ -136,7 +137,8 @@ HWY_INLINE void DescendLanes(const Node* tree, const float* px, const float* py,
   VI light = hn::Set(di, -1), part = hn::Zero(di);
   VF pmf = zero;
   MF active = hn::FirstN(df, hn::Lanes(df));
-  const VI leaf_bit = hn::Set(di, int32_t(Node::kLeaf)), part_mask = hn::Set(di, int32_t(~(Node::kLeaf | Node::kTwoSided)));
+  const VI leaf_bit = hn::Set(di, int32_t(Node::kLeaf));
+  const VI part_mask = hn::Set(di, int32_t(~(Node::kLeaf | Node::kTwoSided)));
   for (;;) {
     const VI first = hn::BitCast(di, hn::GatherIndex(du, words + kIndex, node));
     const VI at0 = hn::Add(hn::ShiftLeft<3>(first), hn::ShiftLeft<2>(first));  // first * kStride
