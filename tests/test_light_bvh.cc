@@ -102,6 +102,27 @@ bool clearly_behind(const TestScene& s, const Light& l, Vec3f p) {
   return dot(normalize(p - c), n) < -0.5f && length(p - c) > 2 * size;
 }
 
+// Adds to s a Patches light of `count` random patches in the same cube: one-sided parallelograms and, every fourth,
+// a two-sided triangle (a voxel grid's emitting faces and cell shapes).
+std::shared_ptr<EmissivePatches> add_patches(TestScene& s, int count, uint64_t seed) {
+  auto patches = std::make_shared<EmissivePatches>();
+  Pcg32 rng(seed);
+  for (int i = 0; i < count; ++i) {
+    const Vec3f o(rng.next_float() * 20 - 10, rng.next_float() * 20 - 10, rng.next_float() * 20 - 10);
+    const Frame f = Frame::from_z(random_dir(rng));
+    const Rgb L(0.2f + 2 * rng.next_float());
+    if (i % 4 == 3) patches->add_triangle(o, o + f.s * 0.5f, o + f.t * 0.5f, L, true);
+    else patches->add_parallelogram(o, f.s * 0.4f, f.t * 0.3f, f.n, L, false);
+  }
+  patches->finish();
+  Light pl;
+  pl.kind = LightKind::Patches;
+  pl.patches = patches;
+  s.lights.push_back(pl);
+  s.power.push_back(light_power(s.view(), pl));
+  return patches;
+}
+
 }  // namespace
 
 TEST_CASE("light bvh: the union of two cones holds both", "[lights][light_bvh]") {
@@ -271,21 +292,8 @@ TEST_CASE("light bvh: lights at infinity share a probability weighed by irradian
 TEST_CASE("light bvh: the parts of a Patches light are leaves; their probabilities follow sampling",
           "[lights][light_bvh][voxel]") {
   TestScene s = make_scene(20, 5, 5, 1, 17);
-  auto patches = std::make_shared<EmissivePatches>();
-  Pcg32 rng(21);
-  for (int i = 0; i < 150; ++i) {
-    const Vec3f o(rng.next_float() * 20 - 10, rng.next_float() * 20 - 10, rng.next_float() * 20 - 10);
-    const Frame f = Frame::from_z(random_dir(rng));
-    const Rgb L(0.2f + 2 * rng.next_float());
-    if (i % 4 == 3) patches->add_triangle(o, o + f.s * 0.5f, o + f.t * 0.5f, L, true);
-    else patches->add_parallelogram(o, f.s * 0.4f, f.t * 0.3f, f.n, L, false);
-  }
-  patches->finish();
-  Light pl;
-  pl.kind = LightKind::Patches;
-  pl.patches = patches;
-  s.lights.push_back(pl);
-  s.power.push_back(light_power(s.view(), pl));
+  const std::shared_ptr<EmissivePatches> patches = add_patches(s, 150, 21);
+  Pcg32 rng(22);
   const int li = int(s.lights.size() - 1);
   const LightBvh bvh(s.view(), s.lights, s.power);
   // Bins: one per light but the Patches light, one per part of it, one for "no light".
@@ -365,19 +373,8 @@ TEST_CASE("light bvh: the batch descent gives sample()'s lights, parts and proba
   // Quads (cones of normals, some two-sided), points (normals everywhere), spots (emission cones), a Patches light's
   // parts and directional lights at infinity; receivers with and without normals, some next to the lights.
   TestScene s = make_scene(40, 30, 10, 2, 41);
-  auto patches = std::make_shared<EmissivePatches>();
-  Pcg32 rng(43);
-  for (int i = 0; i < 60; ++i) {
-    const Vec3f o(rng.next_float() * 20 - 10, rng.next_float() * 20 - 10, rng.next_float() * 20 - 10);
-    const Frame f = Frame::from_z(random_dir(rng));
-    patches->add_parallelogram(o, f.s * 0.4f, f.t * 0.3f, f.n, Rgb(0.5f + rng.next_float()), i % 3 == 0);
-  }
-  patches->finish();
-  Light pl;
-  pl.kind = LightKind::Patches;
-  pl.patches = patches;
-  s.lights.push_back(pl);
-  s.power.push_back(light_power(s.view(), pl));
+  add_patches(s, 60, 43);
+  Pcg32 rng(44);
   const LightBvh bvh(s.view(), s.lights, s.power);
   // Counts around the vector widths exercise the padded remainder.
   for (const size_t count : {size_t(1), size_t(7), size_t(16), size_t(1001)}) {
