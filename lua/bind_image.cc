@@ -151,7 +151,8 @@ int image_mean(lua_State* L) {
 }
 
 // image.stages: nil unless the render collected its profile, else {threads = n, <stage> = {seconds, calls,
-// items}, ..., shade = {<material type> = {...}}} (render/stage_stats.h; shade lists the types that were hit).
+// items}, ..., shade = {<material type> = {...}}} (render/stage_stats.h; shade lists the types that were hit;
+// shadows also has blocked and tested where next-event estimation's shadow rays were counted).
 void push_stages(lua_State* L, const StageStats& st) {
   if (!st.enabled) {
     lua_pushnil(L);
@@ -165,6 +166,12 @@ void push_stages(lua_State* L, const StageStats& st) {
     lua_setfield(L, -2, "calls");
     lua_pushinteger(L, lua_Integer(t.items));
     lua_setfield(L, -2, "items");
+    if (t.tested > 0) {
+      lua_pushinteger(L, lua_Integer(t.blocked));
+      lua_setfield(L, -2, "blocked");
+      lua_pushinteger(L, lua_Integer(t.tested));
+      lua_setfield(L, -2, "tested");
+    }
   };
   lua_createtable(L, 0, kStageCount + 2);
   lua_pushinteger(L, st.threads);

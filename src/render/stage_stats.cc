@@ -75,8 +75,11 @@ std::string format_stage_table(const StageStats& st, double wall_seconds) {
                           t.seconds, share, static_cast<unsigned long long>(t.calls),
                           static_cast<unsigned long long>(t.items), unit);
     if (trace && n > 0 && size_t(n) < sizeof line)
-      std::snprintf(line + n, sizeof line - size_t(n), ", %.2f Mrays/s per thread",
-                    t.seconds > 0 ? double(t.items) / t.seconds * 1e-6 : 0.0);
+      n += std::snprintf(line + n, sizeof line - size_t(n), ", %.2f Mrays/s per thread",
+                         t.seconds > 0 ? double(t.items) / t.seconds * 1e-6 : 0.0);
+    if (t.tested > 0 && n > 0 && size_t(n) < sizeof line)
+      std::snprintf(line + n, sizeof line - size_t(n), ", %.1f %% blocked",
+                    100.0 * double(t.blocked) / double(t.tested));
     out += line;
     out += '\n';
   };

@@ -30,10 +30,15 @@ constexpr int kStageCount = int(Stage::Count);
 struct StageTime {
   double seconds = 0;
   uint64_t calls = 0, items = 0;
+  // Shadows only: of `tested` shadow rays (those of the camera integrators' next-event estimation), how many were
+  // blocked. A light sampler whose rays are mostly blocked is choosing lights that cannot be seen.
+  uint64_t blocked = 0, tested = 0;
   void add(const StageTime& o) {
     seconds += o.seconds;
     calls += o.calls;
     items += o.items;
+    blocked += o.blocked;
+    tested += o.tested;
   }
 };
 

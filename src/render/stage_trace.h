@@ -27,6 +27,11 @@ inline void trace_shadows(const Scene& scene, const ShadowQueue& shadows, PathSt
   for (size_t k = 0; k < n; ++k)
     if (!occluded[k]) paths.radiance[shadows.path[k]] += shadows.contribution[k];
   stats.shadow_rays += n;
+  if (stats.stages.enabled) {
+    StageTime& t = stats.stages[Stage::Shadows];
+    for (size_t k = 0; k < n; ++k) t.blocked += occluded[k] != 0;
+    t.tested += n;
+  }
 }
 
 }  // namespace torte

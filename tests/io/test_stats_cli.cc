@@ -32,6 +32,10 @@ assert(st.shade.lambert and st.shade.plastic, "both material types are listed")
 assert(shaded == st.hits.items, "shaded " .. shaded .. " ~= queued " .. st.hits.items)
 assert(st.trace.items + st.shadows.items == img.rays, "traced " .. st.trace.items + st.shadows.items)
 assert(st.camera.items == 24 * 16 * 4 and st.film.items == 24 * 16 * 4, "camera and film items")
+-- The sphere shades part of the floor: some of the shadow rays are blocked, not all.
+assert(st.shadows.tested == st.shadows.items and st.shadows.blocked > 0 and st.shadows.blocked < st.shadows.tested,
+       "blocked " .. tostring(st.shadows.blocked) .. " of " .. tostring(st.shadows.tested))
+assert(st.trace.blocked == nil, "only shadow rays are counted as blocked")
 print("stages=ok threads=" .. st.threads)
 )";
 
@@ -88,6 +92,9 @@ TEST_CASE("cli: --stats prints a line per stage whose counts add up", "[cli][sta
     CHECK(rows.at("trace").items + rows.at("shadows").items == rays);
     CHECK(rows.at("shade lambert").items + rows.at("shade plastic").items == rows.at("hits").items);
     CHECK(rows.at("camera").items == 24 * 16 * 4);
+    // The shadows line ends with the share of its rays that were blocked.
+    const std::regex shadows_line(R"(\n  shadows .* rays, [0-9.]+ Mrays/s per thread, [0-9.]+ % blocked\n)");
+    CHECK(std::regex_search(r.err, shadows_line));
     CHECK(rows.at("film").items == 24 * 16 * 4);
     double sum = 0;
     for (const auto& [name, row] : rows)
