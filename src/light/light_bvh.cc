@@ -473,8 +473,7 @@ void LightBvh::sample_batch(size_t count, const Vec3f* p, const Vec3f* n, const 
       light[k] = sample(p[k], n[k], u[k], &pmf[k], &part[k]);
       continue;
     }
-    // sample()'s steps before the descent.
-    light[k] = -1, pmf[k] = 0, part[k] = 0;
+    // sample()'s steps before the descent (every entry's results are written below or by sample()).
     const float p_inf = infinite_probability(p[k], n[k]);
     if (u[k] < p_inf) {
       light[k] = sample(p[k], n[k], u[k], &pmf[k], &part[k]);
